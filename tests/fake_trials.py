@@ -30,6 +30,36 @@ def timeline_ending(final_mode: str, t: float = 1.0,
     return [{"t": t, "from": "Reach", "to": final_mode, "trigger": "timer", "reason": reason}]
 
 
+def whole_result(trial: dict | None = None, **fields) -> dict:
+    """A TrialResult's whole JSON form (TrialResult.from_dict requires every field): `fields`
+    over the defaults of a trial that took no transition, its identity (object, controller,
+    seed, offset) that of `trial` (a sweep trial's dict) where it names them."""
+    import dataclasses
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    result = {field.name: (field.default_factory() if field.default is dataclasses.MISSING
+                           else field.default)
+              for field in dataclasses.fields(TrialResult) if field.name != "log"}
+    result.update(transitions=[], final_mode="Reach")
+    trial = trial or {}
+    for field, key in (("object", "object_name"), ("controller", "controller"),
+                       ("seed", "seed")):
+        if trial.get(key) is not None:
+            result[field] = trial[key]
+    if "marker_dx_m" in trial and "perturbation" in trial:  # where a sweep puts the object
+        jitter = trial["perturbation"]
+        result["offset_m"] = [trial["marker_dx_m"] + jitter["dx_m"],
+                              trial["marker_dy_m"] + jitter["dy_m"]]
+    return {**result, **fields}
+
+
+def result_of_trial(result: dict, trial: dict) -> dict:
+    """A whole `result` as `trial`'s (a sweep trial's dict): its object, controller, seed and
+    offset those the trial gives (as a sweep's records must have them)."""
+    identity = whole_result(trial)
+    return {**result, **{name: identity[name]
+                         for name in ("object", "controller", "seed", "offset_m")}}
+
+
 def _uniforms(trial, count):
     digest = hashlib.sha256(f"{trial['pair_id']}|{trial['seed']}".encode()).digest()
     return [int.from_bytes(digest[4 * k:4 * k + 4], "big") / 2.0 ** 32 for k in range(count)]
@@ -45,7 +75,7 @@ def fake_trial(trial):
                  "reason": "only the left finger touched"},
                 {"t": 0.7, "from": "Re-Reach", "to": "Reach", "trigger": "corrective",
                  "reason": "re-centred"}] if not trial["well_placed"] and hold else []
-    return {
+    return whole_result(trial, **{
         "hold_success": hold,
         "unload_success": unload,
         # Unloaded: judged only in a Done trial, the object released; else it stopped in Load.
@@ -63,7 +93,7 @@ def fake_trial(trial):
         "false_triggers": int(u_false < 0.2),
         "sim_time_s": 8.0,
         "wall_time_s": 0.0,
-    }
+    })
 
 
 def slow_fake_trial(trial):

@@ -34,6 +34,7 @@ from tegrasp_drake.sweep.records import make_record, write_record
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
 from tests.analysis_script import load_analysis_script
+from tests.fake_trials import whole_result
 
 
 
@@ -266,9 +267,9 @@ def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp
               [entry(3.4, Mode.REACH, reach.mode, reach.reason)])]
     assert reach.mode == Mode.RE_REACH  # the timeout's first Re-Reach, its corrective action
     for trial, (config, transitions), actions in zip(trials, cases, ([], ["re_reach"])):
-        write_record(tmp_path / "results", make_record(trial, result={
-            "transitions": transitions, "hold_success": True, "unload_success": False,
-            "final_mode": transitions[-1]["to"], "corrective_actions": actions}))
+        write_record(tmp_path / "results", make_record(trial, result=whole_result(
+            trial, transitions=transitions, hold_success=True, unload_success=False,
+            final_mode=transitions[-1]["to"], corrective_actions=actions)))
         synthetic_trial_log(synthetic_grasp(config)).save(
             tmp_path / "logs" / trial_log_name(trial))
     out = tmp_path / "weak_stimuli.md"

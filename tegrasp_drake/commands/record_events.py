@@ -14,7 +14,8 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.integer_text import integer_option
-from tegrasp_drake.rig.files import folder_problem, interruptions_deferred
+from tegrasp_drake.rig.files import (absent_folders, folder_problem, interruptions_deferred,
+                                     made_folders_removed_if_empty)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 
 TEMPLATE_RUNS = 5  # recording/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
@@ -130,10 +131,15 @@ def run(args) -> int:
     if problem:
         raise SystemExit(f"tegrasp: error: {named}: {problem}; give a folder you can write"
                          f"{'' if args.events else ' (or --events DIR)'}")
+    from tegrasp_drake.commands.run_folder import other_run_problem
+    problem = other_run_problem(out, "record-events", named=named)
+    if problem:  # the events would mix with a trial's, sweep's or study's files
+        raise SystemExit(f"tegrasp: error: {problem}")
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record)
     _check_destination(out, named, [name for name, _ in to_record], runs)
-    with _held_events_folder(out, named):
+    # A recording refused, failed or interrupted before it saved leaves no folder it made.
+    with made_folders_removed_if_empty(absent_folders(out)), _held_events_folder(out, named):
         return _record(out, to_record, runs, args)
 
 

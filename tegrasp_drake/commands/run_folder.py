@@ -13,9 +13,10 @@ import tempfile
 
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, claim_folder,
-                                     file_problem, folder_problem, held_folder,
-                                     interruptions_deferred, own_staging_suffix,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, absent_folders,
+                                     claim_folder, file_problem, folder_problem, held_folder,
+                                     interruptions_deferred, made_folders_removed_if_empty,
+                                     own_staging_suffix,
                                      remove_stale_staging_files_of, write_atomically)
 
 logger = logging.getLogger(__name__)
@@ -43,14 +44,18 @@ def run_owner(folder) -> tuple[str, str] | None:
     return None
 
 
-def other_run_problem(folder, command: str) -> str | None:
+def other_run_problem(folder, command: str, *, named: str | None = None) -> str | None:
     """Why `tegrasp <command>` may not write its run into `folder`, or None: it holds another
     command's run, whose files a run of this one would mix with (and a resume of that run
-    would then read); each command's run keeps a folder of its own."""
+    would then read); each command's run keeps a folder of its own. `named`: the option or
+    setting that chose the folder, when it is not --out (record-events' --events)."""
     owner = run_owner(folder)
     if owner is None or owner[0] == command or (command, owner[0]) == ("sensitivity",
                                                                       "transfer"):
         return None  # a sensitivity study is a transfer with its points.json beside it
+    if named is not None:
+        return (f"{named} holds a `tegrasp {owner[0]}` run ({owner[1]}); give {command} a "
+                "folder of its own (not a run's folder)")
     return (f"--out {folder} holds a `tegrasp {owner[0]}` run ({owner[1]}); give another "
             f"--out for this {command} run")
 
@@ -117,7 +122,7 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
 def _made_by(make, folder) -> tuple[pathlib.Path, list[pathlib.Path]]:
     """Runs make() -> the run folder, and returns it with the folders it created (the run
     folder, if it was not there, then its parents that were not), deepest first."""
-    absent_parents = [path for path in folder.parents if not path.exists()]
+    absent_parents = absent_folders(folder.parent)
     existed = folder.exists()
     made_folder = make()  # `folder`, or a numbered one it claimed beside `folder`
     new = [] if made_folder == folder and existed else [made_folder]
@@ -128,20 +133,13 @@ def _made_by(make, folder) -> tuple[pathlib.Path, list[pathlib.Path]]:
 def new_run_folder(out, *, default, replace_default: bool, overwrite: bool):
     """choose_run_folder for the block. When the block raises or is interrupted (a failed
     simulation, Ctrl-C, SIGTERM), the folders made for it, the run folder and any parents it
-    needed, are removed again if they are still empty: a run that wrote nothing leaves
-    nothing."""
+    needed, are removed again if they are still empty (made_folders_removed_if_empty): a run
+    that wrote nothing leaves nothing."""
     folder = pathlib.Path(out if out is not None else default)
     folder, made = _made_by(lambda: choose_run_folder(
         out, default=default, replace_default=replace_default, overwrite=overwrite), folder)
-    try:
+    with made_folders_removed_if_empty(made):
         yield folder
-    except BaseException:
-        for path in made:  # deepest first; rmdir removes only an empty folder
-            try:
-                path.rmdir()
-            except OSError:
-                break
-        raise
 
 
 STAGING_PREFIX = ".staging-"  # a run's files until it commits them (staged_run)

@@ -1,6 +1,7 @@
 """The user's files: atomic writes (a temporary file beside the target, then a
 rename), signals deferred while renames commit one result, a folder claimed with one mkdir,
-bounded reads that refuse FIFOs and devices, SIGTERM and SIGHUP ending a run as Ctrl-C does,
+the folders a failed command made removed again while empty, bounded reads that refuse
+FIFOs and devices, SIGTERM and SIGHUP ending a run as Ctrl-C does,
 one-line UserPathError, strict JSON, and the one reader of a JSON file (read_json_file)."""
 
 import contextlib
@@ -413,6 +414,30 @@ def non_folder_on_path(folder) -> tuple[pathlib.Path, OSError | None] | None:
     if place is None or place.is_dir():
         return None
     return place, None
+
+
+def absent_folders(folder) -> list[pathlib.Path]:
+    """`folder` and its parents that do not exist yet, deepest first: what making it makes."""
+    folder = pathlib.Path(folder)
+    return [path for path in (folder, *folder.parents) if not os.path.lexists(path)]
+
+
+@contextlib.contextmanager
+def made_folders_removed_if_empty(made):
+    """For a block that makes the folders `made` (absent_folders, deepest first): when it
+    raises or is interrupted (an error, Ctrl-C, SIGTERM), each of them still empty is removed
+    again, deepest first, stopping at the first that is not (rmdir removes only an empty
+    folder): a command that wrote nothing leaves nothing. A folder that was there before is
+    never in `made`, so it stays, empty or not."""
+    try:
+        yield
+    except BaseException:
+        for path in made:
+            try:
+                path.rmdir()
+            except OSError:  # holds something (or was never made): it, and its parents, stay
+                break
+        raise
 
 
 def claim_folder(path) -> bool:

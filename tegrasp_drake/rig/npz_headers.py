@@ -4,6 +4,7 @@ before np.load, which would allocate whatever shape a few-kB file declares."""
 import math
 import os
 import stat
+import struct
 import tokenize
 import zipfile
 import zlib
@@ -28,6 +29,44 @@ class NpzHeaderError(ValueError):
 _ALLOWED_KINDS = frozenset("biufU")
 # A plain array's .npy header is a few hundred bytes (64-byte multiples).
 _MAX_HEADER_BYTES = 65_536
+# zipfile reads the whole central directory the archive's end record declares, a ZipInfo
+# a member, before a header can be checked: a file of millions of empty members would take
+# gigabytes. An .npz's entry is 46 bytes, its name and a zip64 extra field (~100 bytes): a
+# trial log's 14 arrays take under 2 kB, and 64 kB holds over 600 members.
+MAX_CENTRAL_DIRECTORY_BYTES = 65_536
+# The zip end records (PKWARE APPNOTE 4.3.14-4.3.16): signature, fixed size, and where the
+# central directory's size lies in it.
+_END_RECORD = (b"PK\x05\x06", 22, "<I", 12)
+_ZIP64_LOCATOR = (b"PK\x06\x07", 20)
+_ZIP64_END_RECORD = (b"PK\x06\x06", 56, "<Q", 40)
+
+
+def central_directory_bytes(path) -> int | None:
+    """The size of the central directory that the end record of the zip archive at `path`
+    declares, the zip64 end record's where one is located (as zipfile reads it), from the
+    file's last 64 kB; None when no end record is found (zipfile then refuses the file)."""
+    signature, size, form, at = _END_RECORD
+    with open(path, "rb") as file:
+        length = file.seek(0, os.SEEK_END)
+        tail_start = max(0, length - size - 65_535)  # the end record and its comment
+        file.seek(tail_start)
+        tail = file.read()
+        end = tail.rfind(signature)
+        if end < 0 or end + size > len(tail):
+            return None
+        declared = struct.unpack_from(form, tail, end + at)[0]
+        locator = end - _ZIP64_LOCATOR[1]
+        if locator < 0 or tail[locator:locator + 4] != _ZIP64_LOCATOR[0]:
+            return declared
+        signature, size, form, at = _ZIP64_END_RECORD
+        offset = struct.unpack_from("<Q", tail, locator + 8)[0]
+        if offset + size > length:
+            return declared
+        file.seek(offset)
+        record = file.read(size)
+        if record[:4] != signature:
+            return declared
+        return struct.unpack_from(form, record, at)[0]
 
 
 def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dtype, int]]:
@@ -85,6 +124,14 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
     if not stat.S_ISREG(mode):
         raise NpzHeaderError("it is not a regular file (a folder, named pipe or device); "
                              "give the trial.npz file")
+    try:
+        directory = central_directory_bytes(path)
+    except OSError as e:
+        raise NpzHeaderError(f"it cannot be read: {e.strerror or e}") from None
+    if directory is not None and directory > MAX_CENTRAL_DIRECTORY_BYTES:
+        raise NpzHeaderError(f"its zip directory declares {directory} bytes of members, more "
+                             f"than the {MAX_CENTRAL_DIRECTORY_BYTES} of the few arrays {kind} "
+                             "holds")
     try:
         zip_file = zipfile.ZipFile(path)
     except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read

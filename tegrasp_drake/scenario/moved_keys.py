@@ -1,6 +1,8 @@
-"""Scenario keys that moved when the settings were nested by concern, old dotted path -> new.
-User input naming an old key is refused with its new path (`refuse_moved_keys`); stored
-records are read through `migrate_stored_scenario` and `migrate_stored_overrides`.
+"""Scenario keys that moved when the settings were nested by concern, old dotted path -> new,
+and keys a version removed (REMOVED_KEYS). User input naming an old key is refused with its
+new path, or what replaced it (`refuse_moved_keys`); stored records are read through
+`migrate_stored_scenario` (a moved key moved, a removed one dropped) and
+`migrate_stored_overrides`.
 """
 
 import copy
@@ -9,6 +11,7 @@ from tegrasp_drake.control.controller_config import MOVED_FIELDS as CONTROLLER_M
 from tegrasp_drake.control.controller_config import TAXEL_AWARE_MOVED_FIELDS
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.simulation.pad_vibration_sensor import MOVED_TO_FILM
+from tegrasp_drake.simulation.sim_robotiq_driver import REMOVED_FIELDS as GRIPPER_REMOVED
 
 # The old keys: each config class's table beside it (registered there, so that a script
 # that never imports this package still gets the new path).
@@ -23,10 +26,16 @@ MOVED_KEYS = {
 }
 
 
-def _moved_in(data: dict) -> list[tuple[str, str]]:
-    """(old, new) of each old key that YAML data (a scenario's) holds."""
+# Keys a version removed, dotted path -> what replaced it (each config class's table beside
+# it). A stored scenario written before (the transfer study's events under
+# analysis/results_transfer*/events hold the gripper's) is read without them.
+REMOVED_KEYS = {f"gripper.{name}": why for name, why in GRIPPER_REMOVED.items()}
+
+
+def _moved_in(data: dict, keys=MOVED_KEYS) -> list[tuple[str, str]]:
+    """(old, new) of each old key of `keys` (old -> new) that YAML data (a scenario's) holds."""
     found = []
-    for old, new in MOVED_KEYS.items():
+    for old, new in keys.items():
         node = data
         parts = old.split(".")
         for part in parts[:-1]:
@@ -43,6 +52,8 @@ def refuse_moved_keys(data, source: str) -> None:
     for old, new in _moved_in(data):
         raise ConfigError(f"{source}: field '{old}' is now '{new}' (the settings are nested "
                           f"by concern); write {new}")
+    for old, why in _moved_in(data, REMOVED_KEYS):
+        raise ConfigError(f"{source}: field '{old}' was removed: {why}; delete it")
 
 
 def _move(data: dict, old: str, new: str) -> None:
@@ -59,12 +70,19 @@ def _move(data: dict, old: str, new: str) -> None:
 
 
 def migrate_stored_scenario(data):
-    """A copy of a stored record's scenario YAML data with its old keys moved to the new paths."""
+    """A copy of a stored record's scenario YAML data with its old keys moved to the new paths
+    and its removed keys (REMOVED_KEYS) dropped."""
     if not isinstance(data, dict):
         return data
     data = copy.deepcopy(data)
     for old, new in _moved_in(data):
         _move(data, old, new)
+    for old, _ in _moved_in(data, REMOVED_KEYS):
+        *parents, name = old.split(".")
+        node = data
+        for part in parents:
+            node = node[part]
+        del node[name]
     return data
 
 

@@ -1,6 +1,7 @@
 """TrialResult: what one simulated trial did, judged against the ground truth (Sec. IV-C).
 Its JSON form (`to_dict`) is what result.json, `tegrasp trial --json` and a sweep record's
-"result" hold; `from_dict` reads one back (a missing field takes its default)."""
+"result" hold; `from_dict` reads one back: every field is required but the few a later
+version added (FIELDS_ADDED_LATER), which results written before them lack."""
 
 import dataclasses
 import math
@@ -36,6 +37,14 @@ LATENCY_ROUND_OFF_ULPS = 2
 # A failure is the reason a controller gives for going to Failed, one sentence (the longest
 # in the committed sweep records: 109 characters); ten times a long sentence is not one.
 MAX_FAILURE_CHARS = 1000
+
+
+# The fields a version after the first results added to the JSON form, each with the value
+# from_dict reads where it is missing: not measured (None). The committed sweep records of
+# those versions (analysis/results_*/, analysis/geometry_contract/) lack them, and the JSON
+# form has no version of its own to tell them by; every other field is required.
+FIELDS_ADDED_LATER = {"lift_grip_fraction": None, "cpu_time_s": None,
+                      "release_height_m": None}
 
 
 # How far a real-time factor may lie from sim_time_s / wall_time_s (relative): run_trial
@@ -350,21 +359,28 @@ class TrialResult:
 
     @classmethod
     def from_dict(cls, data: dict) -> "TrialResult":
-        """The TrialResult of its JSON form; unknown keys ignored, missing fields defaulted.
-        TypeError naming the argument when `data` is not a dict (as public_api's)."""
+        """The TrialResult of its JSON form (to_dict); unknown keys ignored. Every field is
+        required but FIELDS_ADDED_LATER (read as not measured where missing): ValueError
+        naming the first field missing or not of its type or range; TypeError naming the
+        argument when `data` is not a dict (as public_api's)."""
         if not isinstance(data, dict):
             raise TypeError(f"TrialResult.from_dict: argument 'data' must be a dict (a trial "
                             f"result's JSON form), got {type(data).__name__} "
                             f"{shorten(repr(data))}")
-        known = {field.name for field in dataclasses.fields(cls)} - {"log"}
-        values = {key: value for key, value in data.items() if key in known}
+        fields = [field.name for field in dataclasses.fields(cls) if field.name != "log"]
+        missing = [name for name in fields if name not in data and name not in FIELDS_ADDED_LATER]
+        if missing:
+            raise ValueError(f"not a trial result's JSON form: field '{missing[0]}' is missing "
+                             f"({len(missing)} of its {len(fields)} fields are); give the "
+                             "whole JSON form TrialResult.to_dict() writes (result.json, a "
+                             "sweep record's 'result')")
+        values = {**FIELDS_ADDED_LATER, **{name: data[name] for name in fields if name in data}}
         try:  # a hand-edited JSON form: one line naming the field
-            transitions = data.get("transitions", ())
+            transitions = data["transitions"]
             if not isinstance(transitions, list | tuple):
                 raise ValueError(f"'transitions' must be a list, got {shorten(repr(transitions))}")
             values["transitions"] = tuple(map(Transition.from_dict, transitions))
-            if "final_mode" in data:
-                values["final_mode"] = Mode.from_label(data["final_mode"])
+            values["final_mode"] = Mode.from_label(data["final_mode"])
             return cls(**values)
         except (ValueError, TypeError) as e:
             raise ValueError(f"not a trial result's JSON form: {shorten(str(e), 300)}") from None

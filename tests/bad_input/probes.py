@@ -36,7 +36,7 @@ from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, FORMAT_VERSION,
 from tegrasp_drake.sweep.records import _checksum, record_path
 from tegrasp_drake.sweep.runner import run_sweep
 from tegrasp_drake.tactile.sampling import samples_per_window
-from tests.fake_trials import fake_trial
+from tests.fake_trials import fake_trial, whole_result
 
 
 def run_cli(argv, capfd) -> tuple[int, str]:
@@ -360,11 +360,12 @@ SCENARIO = "random_seed: 600\nobject:\n  name: box\n"
 
 
 def result_refused(data, expected):
-    """TrialResult's JSON form `data` is refused (result.json, a sweep record, a trial log's
-    stored result all read it so) with one line naming `expected`."""
+    """TrialResult's JSON form, `data` over a whole result's defaults (whole_result), is refused
+    (result.json, a sweep record, a trial log's stored result all read it so) with one line
+    naming `expected`."""
     from tegrasp_drake.scenario.trial_result import TrialResult
     with pytest.raises(ValueError) as refused:
-        TrialResult.from_dict(data)
+        TrialResult.from_dict(whole_result(**data))
     message = str(refused.value)
     assert expected in message and "\n" not in message, message
 
@@ -379,9 +380,9 @@ def logged_transition(t, from_mode, to_mode, scores=None):
 TIMELINE = [logged_transition(0.02, "Reach", "Load", [0.9, 0.8, 0.7, 0.95]),
             logged_transition(0.05, "Load", "Lift", [0.9, 0.8, 0.7, 0.95])]
 
-RESULT = {"object": "box", "controller": "memorized", "seed": 600, "hold_success": False,
-          "final_mode": "Lift", "hold_time_s": 0.0, "transitions": TIMELINE,
-          "corrective_actions": [], "sim_time_s": 0.1}
+RESULT = whole_result(**{"object": "box", "controller": "memorized", "seed": 600,
+                         "hold_success": False, "final_mode": "Lift", "hold_time_s": 0.0,
+                         "transitions": TIMELINE, "corrective_actions": [], "sim_time_s": 0.1})
 
 META = {"scenario": SCENARIO, "controller": "memorized", "transitions": TIMELINE,
         "phase_starts": {"Load": 0.02, "Lift": 0.05}, "result": RESULT}

@@ -123,3 +123,45 @@ def test_every_npz_reader_refuses_a_device_before_reading():
     from tegrasp_drake.rig.npz_headers import NpzHeaderError, checked_npz_arrays
     with pytest.raises(NpzHeaderError, match="not a regular file"):
         checked_npz_arrays("/dev/zero", ("t",), max_bytes=10)
+
+
+def _archive_of_empty_members(path, count):
+    """A zip of `count` empty members: a few hundred kB whose central directory zipfile would
+    read whole (a ZipInfo a member) before any header could be checked."""
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_STORED) as archive:
+        for k in range(count):
+            archive.writestr(f"a{k}.npy", b"")
+    return path
+
+
+@pytest.mark.parametrize("zip64", [False, True], ids=["zip", "zip64-end-record"])
+def test_an_npz_of_too_many_members_is_refused_before_its_directory_is_read(
+        zip64, tmp_path, monkeypatch, no_array_is_read):
+    from tegrasp_drake.rig import npz_headers
+    if zip64:  # zipfile writes the zip64 end records past this many members
+        monkeypatch.setattr(zipfile, "ZIP_FILECOUNT_LIMIT", 1)
+    log = _archive_of_empty_members(tmp_path / "trial.npz", 2_000)
+    monkeypatch.undo()
+
+    def no_directory_read(*args, **kwargs):
+        raise AssertionError("the zip directory was read before its size was checked")
+    monkeypatch.setattr(npz_headers.zipfile, "ZipFile", no_directory_read)
+    monkeypatch.setattr(npy_format, "read_array", no_directory_read)
+    with pytest.raises(npz_headers.NpzHeaderError,
+                       match="its zip directory declares .* bytes of members, more than"):
+        npz_headers.checked_npz_arrays(log, ("t_sa",), max_bytes=1000)
+
+
+def test_a_trial_log_with_zip64_end_records_is_read(tmp_path, monkeypatch):
+    """The directory's size is taken where zipfile takes it: the zip64 end record's."""
+    from tegrasp_drake.rig.npz_headers import central_directory_bytes, checked_npz_arrays
+    plain = tmp_path / "plain.npz"
+    np.savez_compressed(plain, t=np.arange(3.0), x=np.ones(2))
+    monkeypatch.setattr(zipfile, "ZIP_FILECOUNT_LIMIT", 1)
+    zip64 = tmp_path / "zip64.npz"
+    np.savez_compressed(zip64, t=np.arange(3.0), x=np.ones(2))
+    monkeypatch.undo()
+    assert zip64.read_bytes().count(b"PK\x06\x06") == 1
+    assert central_directory_bytes(zip64) == central_directory_bytes(plain) > 0
+    arrays = checked_npz_arrays(zip64, ("t", "x"), max_bytes=1000)
+    assert arrays["t"].tolist() == [0.0, 1.0, 2.0]

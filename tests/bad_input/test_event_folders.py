@@ -102,6 +102,33 @@ def test_record_events_refuses_a_destination_it_could_not_save_into_before_simul
     assert folder_contents(events) == before
 
 
+# Rule: record-events refuses a folder that holds another command's run (as --out refuses
+# one command's folder to another): the events would mix with the run's files.
+@pytest.mark.parametrize("make, words", [
+    (lambda run: (run / "result.json").write_text("{}"), "`tegrasp trial` run (result.json)"),
+    (lambda run: (run / "trial.npz").write_bytes(b"PK"), "`tegrasp trial` run (trial.npz)"),
+    (lambda run: (run / "trials").mkdir(), "`tegrasp sweep` run (trials)"),
+    (lambda run: (run / "points.json").write_text("{}"), "`tegrasp sensitivity` run"),
+], ids=["result", "log", "sweep", "sensitivity"])
+def test_record_events_refuses_a_runs_folder_before_simulating(make, words, tmp_path, capfd,
+                                                               no_simulation):
+    run = tmp_path / "run"
+    run.mkdir()
+    make(run)
+    before = folder_contents(run)
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(run)], capfd)
+    assert_one_line_error(code, text, f"--events {run}", words, "not a run's folder")
+    assert folder_contents(run) == before and not (run / "index.json").exists()
+
+
+def test_an_events_variable_naming_a_runs_folder_is_refused(tmp_path, monkeypatch, capfd,
+                                                            no_simulation):
+    (tmp_path / "result.json").write_text("{}")
+    monkeypatch.setenv(paths.EVENTS_ENV, str(tmp_path))
+    code, text = run_cli(["record-events", "--object", "box"], capfd)
+    assert_one_line_error(code, text, paths.EVENTS_ENV, "`tegrasp trial` run (result.json)")
+
+
 @pytest.mark.parametrize("make, words", [
     (lambda path: path.mkdir(), "is a folder, not a file"),
     (lambda path: os.mkfifo(path), "is a named pipe (FIFO)"),

@@ -19,6 +19,7 @@ from tegrasp_drake.sweep.runner import SweepSummary, summary_text
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.sweep.trial_function import trial_log_name
 from tests.bad_input.probes import assert_one_line_error, folder_contents, run_cli
+from tests.fake_trials import whole_result
 from tests.runs.test_hardware_output_safety import disk_with_free_bytes
 
 
@@ -181,13 +182,12 @@ def test_the_trial_function_keeps_its_result_when_its_log_cannot_be_written(
         tmp_path, monkeypatch):
     """run_trial_from_spec, its simulation replaced by a finished run whose log write fails
     with ENOSPC: the runner records the result ("ok") and names the log and the reason."""
-    result = {"hold_success": True, "unload_success": False, "sim_time_s": 8.0,
-              "wall_time_s": 1.0}
+    trial = next(iter(expand_trials(SweepSpec(objects=("box",), attempts=1)))).to_dict()
+    result = whole_result(trial, hold_success=True, sim_time_s=8.0, wall_time_s=1.0)
     finished = types.SimpleNamespace(log=types.SimpleNamespace(save=_enospc),
                                      to_dict=lambda: dict(result))
     monkeypatch.setattr(trial_function, "run_trial", lambda *args, **kwargs: finished)
     monkeypatch.setattr(trial_function, "trial_events", lambda *args: (None, None, None))
-    trial = next(iter(expand_trials(SweepSpec(objects=("box",), attempts=1)))).to_dict()
     function = lambda t: trial_function.run_trial_from_spec(t, log_dir=tmp_path)  # noqa: E731
     outcome = runner.run_trial_safely(function, trial)
     assert outcome[0] == "ok", outcome[1]

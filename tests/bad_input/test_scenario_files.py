@@ -192,3 +192,64 @@ def test_yaml_nested_too_deeply_says_the_limit_and_what_to_give(tmp_path, capfd)
                          capfd)
     assert_one_line_error(code, text, "nests deeper than Python's recursion limit",
                           "give a flat mapping of its fields")
+
+
+# --- committed scenarios ------------------------------------------------------------------
+
+# Rule: every scenario the repository ships or commits loads: the named scenarios, and each
+# stored scenario text (a memorized event's and an events index entry's, the package's events
+# and the studies' under analysis/), those written before a key was removed included.
+REPOSITORY = files.pathlib.Path(__file__).resolve().parents[2]
+
+
+def _stored_scenario_texts():
+    """[(file, k), text] of each scenario text in the repository's JSON files: a 'scenario'
+    field of several lines (the YAML record-events stores; a one-line one, an ensemble's or a
+    template's, names what made the event, events/FORMAT.md)."""
+    texts = []
+    for path in sorted(REPOSITORY.glob("[!.]*/**/*.json")):
+        raw = path.read_text()
+        if '"scenario": "' not in raw:
+            continue
+        data = files.load_json(raw)
+        entries = data.get("events", []) if path.name == "index.json" else [data]
+        texts += [((str(path.relative_to(REPOSITORY)), k), entry["scenario"])
+                  for k, entry in enumerate(entries)
+                  if isinstance(entry.get("scenario"), str) and "\n" in entry["scenario"]]
+    return texts
+
+
+def test_every_committed_scenario_text_loads():
+    from tegrasp_drake.scenario.scenario import scenario_from_yaml
+    texts = _stored_scenario_texts()
+    studies = [where for where, _ in texts if where[0].startswith("analysis/results_transfer")]
+    # the studies': 9 events in each of 4 folders, in its own file and its folder's index
+    assert len(studies) == 72 and len(texts) > len(studies)
+    for (path, k), text in texts:
+        scenario_from_yaml(text, f"{path} [{k}]")
+
+
+def test_every_named_scenario_loads():
+    import yaml
+    names = yaml.safe_load((REPOSITORY / "tegrasp_drake" / "scenarios" / "scenarios.yaml")
+                           .read_text())
+    assert "default" in names
+    for name in names:
+        assert LoadScenario(name=name).object.name
+
+
+def test_a_stored_scenario_is_read_without_the_removed_driver_gains():
+    from tegrasp_drake.scenario.scenario import scenario_from_yaml
+    stored = ("gripper:\n  model: linkage\n  driver_position_gain: 1000.0\n"
+              "  driver_damping_gain: 1.0\n")
+    assert scenario_from_yaml(stored).gripper.model == "linkage"
+
+
+def test_a_scenario_file_naming_a_removed_driver_gain_says_what_replaced_it(tmp_path, capfd):
+    scenario = tmp_path / "old.yaml"
+    scenario.write_text("mine:\n  gripper:\n    driver_position_gain: 1000.0\n")
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, text, str(scenario),
+                          "'gripper.driver_position_gain' was removed",
+                          "gripper.position_loop_hz", "delete it")

@@ -257,3 +257,47 @@ def test_a_hangup_sent_to_a_sweeps_process_group_is_one_line(tmp_path):
             os.killpg(process.pid, signal.SIGKILL)
     assert_one_interruption_line(process.returncode, err, "SIGHUP")
     assert "resource_tracker" not in err and "leak" not in err, err
+
+
+# Rule: a record-events stopped before it saved (SIGTERM, Ctrl-C, an error) removes the events
+# folder it made, and its parents it made, while they are empty; a folder the user had stays.
+def _recording_that_gets(signal_number):
+    def record(*args, **kwargs):
+        os.kill(os.getpid(), signal_number)
+        raise AssertionError("the signal did not stop the recording")
+    return record
+
+
+@pytest.mark.parametrize("signal_number", [signal.SIGTERM, signal.SIGINT])
+def test_an_interrupted_record_events_removes_the_empty_folder_it_made(
+        signal_number, tmp_path, monkeypatch, capfd, python_sigint_handler):
+    from tegrasp_drake.recording import paper_events
+    monkeypatch.setattr(paper_events, "record_events", _recording_that_gets(signal_number))
+    events = tmp_path / "new" / "ev"
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
+    assert_one_interruption_line(code, text, signal.Signals(signal_number).name)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_failed_record_events_removes_the_empty_folder_it_made(tmp_path, monkeypatch,
+                                                                 capfd):
+    from tegrasp_drake.recording import paper_events
+
+    def failed(*args, **kwargs):
+        raise paper_events.RecordEventsError("no first contact")
+    monkeypatch.setattr(paper_events, "record_events", failed)
+    code, text = run_cli(["record-events", "--object", "box", "--events",
+                          str(tmp_path / "ev")], capfd)
+    assert code == 1 and "no first contact" in text
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_interrupted_record_events_keeps_the_users_empty_folder(tmp_path, monkeypatch,
+                                                                   capfd):
+    from tegrasp_drake.recording import paper_events
+    monkeypatch.setattr(paper_events, "record_events", _recording_that_gets(signal.SIGTERM))
+    events = tmp_path / "ev"
+    events.mkdir()
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
+    assert_one_interruption_line(code, text, "SIGTERM")
+    assert events.is_dir() and list(events.iterdir()) == []

@@ -15,7 +15,7 @@ from tegrasp_drake.sweep.runner import run_sweep, run_trial_safely
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
 from tests.bad_input.probes import (assert_one_line_error, events_copy_with_index, forge_record,
                                     run_cli, sweep_with_events)
-from tests.fake_trials import fake_trial
+from tests.fake_trials import fake_trial, whole_result
 
 
 def test_records_of_a_file_or_of_no_folder_are_refused(tmp_path):
@@ -133,7 +133,8 @@ def test_a_sweep_record_names_its_events_folder_resolved(tmp_path, monkeypatch):
         objects=("box",), controllers=("memorized",), attempts=1, grid=((0.0, 0.0),)))]
     identity = events_identities(trials, "ev")[trials[0]["trial_id"]]
     assert identity["folder"] == str(tmp_path.resolve() / "ev")
-    old = make_record(trials[0], result={}, events={**identity, "folder": "ev"})
+    old = make_record(trials[0], result=fake_trial(trials[0]),
+                      events={**identity, "folder": "ev"})
     assert check_record(old) is None
 
 ONE_TRIAL = SweepSpec(objects=("box",), controllers=("memorized",), attempts=1,
@@ -413,7 +414,7 @@ def test_a_record_whose_result_is_not_its_trials_is_corrupt_and_runs_again(
 def test_a_real_time_factor_not_simulated_over_wall_time_is_refused(data, words):
     from tegrasp_drake.scenario.trial_result import TrialResult
     with pytest.raises(ValueError, match=words):
-        TrialResult.from_dict(data)
+        TrialResult.from_dict(whole_result(**data))
 
 
 # Rule: a sweep trial runs at most the longest scenario time limit (a grasp script within

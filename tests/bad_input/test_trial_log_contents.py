@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
+from tests.fake_trials import whole_result
 from tests.bad_input.probes import (META, RESULT, SCENARIO, TIMELINE, assert_one_line_error,
                                     log_refusal, logged_transition, meta_refused, refused_log,
                                     refused_meta, result_refused, run_cli, spoiled, trial_log,
@@ -315,9 +316,9 @@ def test_a_result_held_then_failed_is_read():
                 {"t": 5.7, "from": "Hold", "to": "Place", "trigger": "timer", "reason": "held"},
                 {"t": 6.5, "from": "Place", "to": "Failed", "trigger": "threshold",
                  "reason": "object lost"}]
-    result = TrialResult.from_dict({"hold_success": True, "final_mode": "Failed",
+    result = TrialResult.from_dict(whole_result(**{"hold_success": True, "final_mode": "Failed",
                                     "hold_time_s": 3.2, "transitions": timeline,
-                                    "failure": "object lost"})
+                                    "failure": "object lost"}))
     assert result.hold_success and not result.unload_success
 
 
@@ -335,8 +336,8 @@ def test_correlation_scores_outside_minus_one_to_one_are_refused(controller):
 def test_the_heuristic_detectors_ratios_are_read():
     from tegrasp_drake.scenario.trial_result import TrialResult
     transitions = [logged_transition(1.0, "Reach", "Load", [5.2, 4.35, 0.5, 0.1])]
-    result = TrialResult.from_dict({"hold_success": False, "controller": "heuristic",
-                                    "final_mode": "Load", "transitions": transitions})
+    result = TrialResult.from_dict(whole_result(**{"hold_success": False, "controller": "heuristic",
+                                    "final_mode": "Load", "transitions": transitions}))
     assert result.transitions[0].scores[0] > 1.0
 
 
@@ -387,6 +388,6 @@ def test_a_correlation_one_round_off_past_one_is_read():
     """The streaming matcher's running window energy can put a true 1 a few ulps past it."""
     from tegrasp_drake.scenario.trial_result import TrialResult
     transitions = [logged_transition(1.0, "Reach", "Load", [1.0 + 1e-12, 1.0, -1.0 - 1e-12, 0.5])]
-    result = TrialResult.from_dict({"hold_success": False, "controller": "memorized",
-                                    "final_mode": "Load", "transitions": transitions})
+    result = TrialResult.from_dict(whole_result(**{"hold_success": False, "controller": "memorized",
+                                    "final_mode": "Load", "transitions": transitions}))
     assert result.transitions[0].scores[0] > 1.0

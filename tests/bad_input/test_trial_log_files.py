@@ -22,6 +22,7 @@ from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, TrialLog, Trial
 from tests.bad_input.probes import (META, SCENARIO, TIMELINE, assert_one_line_error, log_refusal,
                                     meta_refused, one_line_of, refused_log, refused_meta,
                                     result_refused, run_cli, run_probe, trial_log, trial_log_with)
+from tests.fake_trials import whole_result
 
 
 def _truncate(path):
@@ -227,20 +228,22 @@ def test_a_trial_log_whose_mode_names_are_not_the_modes_is_refused(tmp_path, nam
 # Rule: the log's controller is the one its trial result names: a figure labels the run with
 # one and annotates it with the other's outcome.
 def test_a_trial_log_whose_controller_differs_from_its_results_is_refused(tmp_path):
+    result = whole_result(controller="memorized")
     path = trial_log_with(tmp_path / "ok.npz", {"controller": "memorized", "phase_starts": {},
-                                                  "result": {"controller": "memorized"}})
+                                                  "result": result})
     assert load_trial_log(path).meta["controller"] == "memorized"
-    refused_meta(tmp_path, {"controller": "heuristic", "result": {"controller": "memorized"}},
+    refused_meta(tmp_path, {"controller": "heuristic", "result": result},
                   "meta 'controller' is 'heuristic', but its 'result' is of 'memorized'")
 
 
 # Rule: the log's trial result is of the seed its scenario ran with.
 def test_a_trial_log_whose_result_seed_differs_from_its_scenarios_is_refused(tmp_path):
     scenario = "random_seed: 680\nobject:\n  name: box\n"
-    path = trial_log_with(tmp_path / "ok.npz", {"scenario": scenario, "result": {"seed": 680},
-                                                 "phase_starts": {}})
+    trial = {"object_name": "box", "controller": "memorized"}  # the log's (META's)
+    path = trial_log_with(tmp_path / "ok.npz", {"scenario": scenario, "phase_starts": {},
+                                                 "result": whole_result(trial, seed=680)})
     assert load_trial_log(path).meta["result"]["seed"] == 680
-    refused_meta(tmp_path, {"scenario": scenario, "result": {"seed": 681}},
+    refused_meta(tmp_path, {"scenario": scenario, "result": whole_result(trial, seed=681)},
                   "meta 'result' is of seed 681, but its 'scenario' ran with random_seed 680")
 
 

@@ -8,6 +8,7 @@ import types
 from tegrasp_drake.commands.trial import print_result
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tests.bad_input.probes import run_cli
+from tests.fake_trials import whole_result
 
 
 class _FinishedTrial:
@@ -47,7 +48,7 @@ def test_the_timeline_shows_the_code_of_the_rule_beside_each_transition(capsys):
     def entry(t, from_mode, to_mode, trigger, reason, **fields):
         return {"t": t, "from": from_mode, "to": to_mode, "trigger": trigger,
                 "reason": reason, **fields}
-    result = TrialResult.from_dict({
+    result = TrialResult.from_dict(whole_result(**{
         "object": "box", "offset_m": [0.0, 0.025], "controller": "taxel_aware", "seed": 680,
         "transitions": [
             entry(1.0, "Reach", "Re-Reach", "corrective", "a finger struck the object",
@@ -56,7 +57,7 @@ def test_the_timeline_shows_the_code_of_the_rule_beside_each_transition(capsys):
             entry(3.0, "Reach", "Load", "memorized_event", "Reach-Load event",
                   scores=[0.9, 0.9, 0.9, 0.9], code="reach_event")],
         "final_mode": "Load", "corrective_actions": ["re_reach"], "hold_time_s": 0.0,
-        "final_tilt_deg": 0.0, "sim_time_s": 4.0, "wall_time_s": 8.0, "real_time_factor": 0.5})
+        "final_tilt_deg": 0.0, "sim_time_s": 4.0, "wall_time_s": 8.0, "real_time_factor": 0.5}))
     print_result(result)
     timeline = capsys.readouterr().out.splitlines()[1:4]
     assert re.search(r"Reach -> Re-Reach +\[corrective: finger_strike\] a finger struck",

@@ -9,6 +9,7 @@ from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.runner import check_result
+from tests.fake_trials import whole_result
 
 RECORD = (pathlib.Path(__file__).resolve().parents[2] / "analysis" / "results_linkage"
           / "paper_grid" / "trials" / "taxel_aware.box.m02.a1.json")
@@ -21,6 +22,46 @@ def test_a_committed_records_result_reads_back_unchanged():
     written = result.to_dict()
     # Fields newer than the record (lift_grip_fraction) are added with their defaults.
     assert {key: written[key] for key in stored} == stored
+
+
+# Rule: the JSON form is read whole: a missing or mistyped field is one line naming it; only
+# the fields a later version added (FIELDS_ADDED_LATER) may be missing, as in the committed
+# records written before them.
+@pytest.mark.parametrize("data, words", [
+    ({}, "field 'object' is missing"),
+    ({"hold_success": True}, "field 'object' is missing"),
+])
+def test_a_result_missing_a_field_is_refused_naming_it(data, words):
+    with pytest.raises(ValueError) as refused:
+        TrialResult.from_dict(data)
+    message = str(refused.value)
+    assert words in message and "TrialResult.to_dict()" in message and "\n" not in message
+
+
+@pytest.mark.parametrize("field", ["hold_success", "final_mode", "transitions", "seed"])
+def test_a_whole_result_without_one_field_is_refused_naming_it(field):
+    data = whole_result()
+    del data[field]
+    with pytest.raises(ValueError, match=f"field '{field}' is missing"):
+        TrialResult.from_dict(data)
+
+
+def test_a_mistyped_field_is_a_value_error_naming_it():
+    with pytest.raises(ValueError, match="field 'hold_success' must be bool, got str"):
+        TrialResult.from_dict(whole_result(hold_success="yes"))
+
+
+@pytest.mark.parametrize("folder", ["results_seed0", "results_robot/paper_grid",
+                                    "geometry_contract/paper_grid"])
+def test_committed_records_without_the_later_fields_are_read(folder):
+    """Records written before cpu_time_s, lift_grip_fraction and release_height_m."""
+    from tegrasp_drake.scenario.trial_result import FIELDS_ADDED_LATER
+    trials = RECORD.parents[3] / folder / "trials"
+    stored = json.loads(next(iter(sorted(trials.glob("*.json")))).read_text())["result"]
+    lacking = [name for name in FIELDS_ADDED_LATER if name not in stored]
+    assert lacking
+    result = TrialResult.from_dict(stored)
+    assert all(getattr(result, name) is None for name in lacking)
 
 
 def test_the_json_form_round_trips():
@@ -37,27 +78,27 @@ def test_the_json_form_round_trips():
     assert "log" not in data
 
 
-# A trial a result names nothing of (no seed, controller, object or offset): these tests are
-# about the result alone.
-A_TRIAL = {}
+# The trial of a result that names no object, controller or seed, its object at the marker
+# (whole_result's defaults): these tests are about the result alone.
+A_TRIAL = {"object_name": "", "controller": "", "seed": None, "marker_dx_m": 0.0,
+           "marker_dy_m": 0.0, "perturbation": {"dx_m": 0.0, "dy_m": 0.0}}
 
 
 def test_a_sweep_refuses_a_result_whose_transitions_do_not_parse():
     entry = {"t": 1.0, "from": "reach", "to": "Load", "trigger": "memorized_event",
              "reason": "Reach-Load event"}
-    problem = check_result({"hold_success": True, "unload_success": False,
-                            "transitions": [entry]}, A_TRIAL)
+    problem = check_result(whole_result(hold_success=True, transitions=[entry]), A_TRIAL)
     assert problem and "'transitions'[0]" in problem and "reach" in problem
 
 
 def test_a_sweep_refuses_a_result_whose_transition_names_no_rule():
     entry = {"t": 1.0, "from": "Reach", "to": "Load", "trigger": "memorized_event",
              "reason": "Reach-Load event", "code": "reach_evnt"}
-    problem = check_result({"hold_success": True, "unload_success": False,
-                            "transitions": [entry]}, A_TRIAL)
+    problem = check_result(whole_result(hold_success=True, transitions=[entry]), A_TRIAL)
     assert problem and "'transitions'[0]" in problem and "reach_evnt" in problem
-    assert check_result({"hold_success": True, "unload_success": False, "final_mode": "Load",
-                         "transitions": [{**entry, "code": "reach_event"}]}, A_TRIAL) is None
+    assert check_result(whole_result(hold_success=True, final_mode="Load",
+                                     transitions=[{**entry, "code": "reach_event"}]),
+                        A_TRIAL) is None
 
 
 def _reach_load(t: float) -> Transition:
@@ -99,7 +140,7 @@ def test_a_transition_with_a_value_out_of_its_range_is_refused_naming_the_field(
                    grip_force_n=float("nan"))
     entry = _reach_load(1.0).as_dict() | {"t": -0.5}
     with pytest.raises(ValueError, match="Transition: field 't' must be at least 0"):
-        TrialResult.from_dict({"transitions": [entry]})
+        TrialResult.from_dict(whole_result(transitions=[entry]))
 
 
 def test_a_damaged_records_result_is_refused_naming_the_record_file_and_field(

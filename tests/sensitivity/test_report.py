@@ -11,14 +11,14 @@ from tegrasp_drake.sensitivity.study import (SensitivitySpec, one_at_a_time,
 from tegrasp_drake.sweep.records import make_record, write_record
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.transfer.matrix import cell_folder, running_sweep
-from tests.fake_trials import timeline_ending
+from tests.fake_trials import result_of_trial, timeline_ending, whole_result
 
 SPEC = SensitivitySpec(parameters=(parameter("gripper.screw_efficiency"),), sweep=SweepSpec(
     objects=("box",), controllers=("memorized",), grid=((0.0, 0.0), (0.01, 0.0)),
     attempts=2, base_seed=600))
-HELD_AND_PLACED = {"hold_success": True, "unload_success": True, "final_mode": "Done",
-                   "transitions": timeline_ending("Done"), "released": True,
-                   "lift_height_m": LIFTED_HEIGHT_M + 0.05, "final_tilt_deg": 0.0}
+HELD_AND_PLACED = whole_result(hold_success=True, unload_success=True, final_mode="Done",
+                               transitions=timeline_ending("Done"), released=True,
+                               lift_height_m=LIFTED_HEIGHT_M + 0.05, final_tilt_deg=0.0)
 DROPPED = {**HELD_AND_PLACED, "hold_success": False, "unload_success": False}
 TOPPLED = {**HELD_AND_PLACED, "unload_success": False, "final_tilt_deg": UPRIGHT_TILT_DEG + 30}
 # Per point, its two misplaced trials' outcomes (the well-placed two are held and placed).
@@ -36,7 +36,7 @@ def write_known_records(out_dir):
         folder = cell_folder(out_dir, *point_folder_cell(SPEC, point))
         for trial in trials:
             result = HELD_AND_PLACED if trial["well_placed"] else next(misplaced)
-            write_record(folder, make_record(trial, result=dict(result)))
+            write_record(folder, make_record(trial, result=result_of_trial(result, trial)))
     return points
 
 

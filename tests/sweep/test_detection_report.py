@@ -4,6 +4,7 @@ import pytest
 
 from tegrasp_drake.sweep.detection_report import (
     corrective_counts, event_trigger_rows, hit_avoid_rows, paired_comparison, report_markdown)
+from tests.fake_trials import whole_result
 
 
 def chain(*steps) -> list[dict]:
@@ -29,11 +30,11 @@ def record(controller, pair, *, hold=True, unload=None, reach_t=4.05, well_place
         steps += ((12.0, "Done", "timer", "the test's timeline"),)
     return {"trial_id": f"{controller}/{pair}",
             "trial": {"controller": controller, "pair_id": pair, "well_placed": well_placed},
-            "result": {"transitions": chain(*steps), "hold_success": hold,
-                       "unload_success": unload, "released": unload,
-                       "final_mode": "Done" if unload else "Load",
-                       "corrective_actions": ["re_reach"],
-                       "physical_events": {"reach_load": 4.0}}}
+            "result": whole_result(**{"transitions": chain(*steps), "hold_success": hold,
+                                      "unload_success": unload, "released": unload,
+                                      "final_mode": "Done" if unload else "Load",
+                                      "corrective_actions": ["re_reach"],
+                                      "physical_events": {"reach_load": 4.0}})}
 
 
 def test_a_late_match_is_detected_with_its_latency_and_an_early_one_is_false():
@@ -69,8 +70,8 @@ def test_corrective_actions_are_counted_once_per_trial():
                         (8.8, "Re-Reach", "corrective", "re-grasp: open and close again"),
                         (10.4, "Reach", "corrective", "re-centred"),
                         (11.6, "Load", "memorized_event", "Reach-Load event"))
-    result = {"transitions": chain(*steps), "hold_success": False, "final_mode": "Load",
-              "corrective_actions": ["re_reach", "re_reach", "regrasp"]}
+    result = whole_result(transitions=chain(*steps), hold_success=False, final_mode="Load",
+                          corrective_actions=["re_reach", "re_reach", "regrasp"])
     records = {"a": {"trial": {"controller": "taxel_aware", "pair_id": "a",
                                "well_placed": False}, "result": result}}
     assert corrective_counts(records)["taxel_aware"] == {"re_reach": 1, "regrasp": 1}
@@ -94,10 +95,10 @@ def hit_record(controller, pair, *, hit, avoids=(), trigger="corrective_event",
                         "trigger": "timer", "reason": "the test's timeline"})
     events = {"reach_load": 3.95} if hit is None else {"reach_load": 3.95, "hit": hit}
     return {"trial": {"controller": controller, "pair_id": pair, "well_placed": True},
-            "result": {"transitions": transitions, "hold_success": True,
-                       "unload_success": True, "final_mode": "Done", "released": True,
-                       "corrective_actions": ["avoid"] * len(avoids),
-                       "physical_events": events}}
+            "result": whole_result(transitions=transitions, hold_success=True,
+                                   unload_success=True, final_mode="Done", released=True,
+                                   corrective_actions=["avoid"] * len(avoids),
+                                   physical_events=events)}
 
 
 def test_a_hit_in_hold_is_detected_missed_or_preceded_by_a_false_avoid():

@@ -12,7 +12,7 @@ from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.control.transition_logic import Observation, next_mode
 from tegrasp_drake.rig.taxel_layout import COLUMNS, ROWS
 from tegrasp_drake.scenario.trial_result import TrialResult
-from tests.fake_trials import timeline_ending
+from tests.fake_trials import timeline_ending, whole_result
 from tegrasp_drake.sweep.failure_classes import (FAILURE_CLASS_AFTER_LIFT_LOAD,
                                                  FAILURE_CLASS_OF_RULE, FAILURE_CLASSES,
                                                  failure_class, failure_class_counts,
@@ -24,8 +24,8 @@ def result(**changes):
     base = {"hold_success": True, "unload_success": True, "failure": "", "final_mode": "Done",
             "lift_height_m": 0.06, "final_tilt_deg": 0.5, "released": True}
     changed = {**base, **changes}
-    return {"transitions": timeline_ending(changed["final_mode"], reason=changed["failure"]),
-            **changed}
+    timeline = timeline_ending(changed["final_mode"], reason=changed["failure"])
+    return whole_result(**{"transitions": timeline, **changed})
 
 
 FAILED = dict(hold_success=False, unload_success=False, final_mode="Failed",

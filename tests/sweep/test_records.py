@@ -92,7 +92,8 @@ def test_flipped_byte_in_a_number_fails_the_checksum(tmp_path, trials):
     text = path.read_text()
     # Flip one bit of the seed's last digit: still valid JSON, different content.
     seed_text = str(trials[0]["seed"])
-    position = text.index(f'"seed": {seed_text}') + len('"seed": ') + len(seed_text) - 1
+    position = (text.index(f'"seed": {seed_text}', text.index('"trial": '))  # the trial's
+                + len('"seed": ') + len(seed_text) - 1)
     data = bytearray(path.read_bytes())
     data[position] ^= 0x01
     path.write_bytes(bytes(data))

@@ -11,6 +11,7 @@ from tegrasp_drake.sweep import SweepSpec, expand_trials, make_record
 from tegrasp_drake.sweep.summary import (PAPER_ROW_NAME, RESULTS_BLOCK, RECORDS_LINE, last_commit,
                                          page_with_record_commits, readme_with_summaries,
                                          summary_rows)
+from tests.fake_trials import result_of_trial, whole_result
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 RESULTS_PAGE = ROOT / "docs" / "results.md"
@@ -33,11 +34,11 @@ def result(hold, *, latency=None, false_triggers=0, trigger="timer"):
                 for t, start, end, by in steps]
     events = {f"{start}_{end}".lower(): t - latency[f"{start}_{end}".lower()]
               for t, start, end, _ in steps if f"{start}_{end}".lower() in latency}
-    return {"hold_success": hold, "unload_success": hold, "released": hold,
-            "transitions": timeline, "final_mode": "Done" if hold else "Failed",
-            "failure": "" if hold else FAILURE, "corrective_actions": [],
-            "physical_events": events, "detection_latency_s": latency,
-            "false_triggers": false_triggers, "sim_time_s": 12.0, "wall_time_s": 25.0}
+    return whole_result(hold_success=hold, unload_success=hold, released=hold,
+                        transitions=timeline, final_mode="Done" if hold else "Failed",
+                        failure="" if hold else FAILURE, corrective_actions=[],
+                        physical_events=events, detection_latency_s=latency,
+                        false_triggers=false_triggers, sim_time_s=12.0, wall_time_s=25.0)
 
 
 def records(objects=("box", "thick_cylinder", "thin_cylinder")):
@@ -59,7 +60,7 @@ def records(objects=("box", "thick_cylinder", "thin_cylinder")):
                        false_triggers=1, trigger="heuristic_event")
         else:
             r = result(True)
-        made.append(make_record(trial.to_dict(), result=r))
+        made.append(make_record(trial.to_dict(), result=result_of_trial(r, trial.to_dict())))
     return made
 
 

@@ -17,6 +17,7 @@ from tegrasp_drake.sweep.table import (
     write_statistics,
     write_table1,
 )
+from tests.fake_trials import whole_result
 
 # Successes out of (3 well-placed, 24 misplaced) trials that reproduce the paper's
 # Table I: (well hold, well unload, misplaced hold, misplaced unload).
@@ -44,13 +45,13 @@ def result(hold, unload, *, re_reaches=0, reach_latency=None, **extra):
                      "trigger": "timer" if unload else "corrective",
                      "reason": "the test's timeline" if unload else FAILURE})
     latency = {} if reach_latency is None else {"reach_load": reach_latency}
-    return {"hold_success": hold, "unload_success": unload, "released": unload,
-            "transitions": timeline, "final_mode": "Done" if unload else "Failed",
-            "failure": "" if unload else FAILURE,
-            "corrective_actions": ["re_reach"] * re_reaches,
-            "physical_events": {"reach_load": LOAD_T - reach_latency} if latency else {},
-            "detection_latency_s": latency, "false_triggers": 0,
-            "sim_time_s": 10.0, "wall_time_s": 20.0, **extra}
+    return whole_result(**{
+        "hold_success": hold, "unload_success": unload, "released": unload,
+        "transitions": timeline, "final_mode": "Done" if unload else "Failed",
+        "failure": "" if unload else FAILURE, "corrective_actions": ["re_reach"] * re_reaches,
+        "physical_events": {"reach_load": LOAD_T - reach_latency} if latency else {},
+        "detection_latency_s": latency, "false_triggers": 0,
+        "sim_time_s": 10.0, "wall_time_s": 20.0, **extra})
 
 
 def paper_records():
