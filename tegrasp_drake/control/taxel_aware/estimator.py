@@ -258,10 +258,12 @@ class ContactEstimator:
         film_finger = film if film in FINGERS else ""
         baseline = (memory.strike_baseline or tuple(float(x) for x in r.wrench)) if wrist else ()
         force = strike_force_n(r.wrench, baseline) if wrist else 0.0
-        striking = force > config.force_n or bool(film_finger)
+        felt_at_wrist = force > config.force_n
+        striking = felt_at_wrist or bool(film_finger)
         since = _since(memory.strike_since, r.t, striking)
+        # the side moment is summed over the ticks the wrist feels the strike
         moment_sum = (memory.strike_moment_sum + side_moment_nm(r.wrench, baseline)
-                      if striking and wrist else 0.0)
+                      if felt_at_wrist else memory.strike_moment_sum if striking else 0.0)
         finger = film_finger or struck_finger(moment_sum, r.contact, config) or ""
         memory = dataclasses.replace(memory, strike_baseline=baseline, strike_since=since,
                                      strike_moment_sum=moment_sum, strike_finger=finger)
