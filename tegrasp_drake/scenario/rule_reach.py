@@ -50,7 +50,8 @@ RULE_COUNTS = {
     "caged": (None, "a first touch on the palm side, by one pad or both at once; both squeeze"),
     "reach_timeout_caged": (None, "after caged"),
     "load_timeout_caged": (None, "after caged"),
-    "finger_strike": (None, "the wrist force of a finger's front, an impact: not quasi-static"),
+    "finger_strike": (None, "the wrist force of a finger's front or (linkage) its film's RA "
+                      "onset, an impact: not quasi-static"),
     "closed_untouched": (None, "no taxel's touch in the close: fires on what no pad pressed"),
     "ra_onset_one_film": (None, "one film's RA onset, an impact the SA need not see"),
 }

@@ -2,14 +2,17 @@
 to tick and across a change of mode."""
 
 import dataclasses
+import types
 
 import numpy as np
 import pytest
 
-from tegrasp_drake.control.controller_config import GraspControllerConfig, TaxelAwareConfig
+from tegrasp_drake.control.controller_config import (GraspControllerConfig, TaxelAwareConfig,
+                                                     TaxelAwareControllerConfig)
 from tegrasp_drake.control.grasp_modes import Mode, Stage
 from tegrasp_drake.control.taxel_aware import (ContactEstimator, ContactMemory,
-                                               ContactReading, ObjectGeometry)
+                                               ContactReading, ObjectGeometry,
+                                               estimator_for_plan)
 from tegrasp_drake.control.taxel_aware.contact_geometry import FaceTouch
 from tegrasp_drake.control.taxel_aware.touch_confirmed import match_confirm_window_s
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
@@ -24,7 +27,11 @@ CONFIRM_S = match_confirm_window_s(SA_RATE_HZ, GraspControllerConfig().update_pe
 ESTIMATOR = ContactEstimator(
     taxel_config=TAXEL, taxel_contact_n=CONTACT_N, match_confirm_window_s=CONFIRM_S,
     geometry=ObjectGeometry(width_m=THIN.width_along_stroke(), height_m=THIN.height(),
-                            grasp_height_m=0.055))
+                            grasp_height_m=0.055), film_strike=False)
+# The linkage hand's: one film's RA onset in the approach is also a finger strike.
+FILM_ESTIMATOR = ContactEstimator(
+    taxel_config=TAXEL, taxel_contact_n=CONTACT_N, match_confirm_window_s=CONFIRM_S,
+    geometry=ESTIMATOR._geometry, film_strike=True)
 
 
 def taxels(left_row=None, right_row=None, force=0.15):
@@ -76,8 +83,82 @@ def test_a_sustained_force_on_the_wrist_in_the_approach_is_a_strike():
     assert estimates[-1].strike_finger == "left"  # the moment about z is positive
     off = ContactEstimator(taxel_config=TaxelAwareConfig(finger_strike=type(
         TAXEL.finger_strike)(enabled=False)), taxel_contact_n=CONTACT_N,
-        match_confirm_window_s=CONFIRM_S, geometry=ESTIMATOR._geometry)
+        match_confirm_window_s=CONFIRM_S, geometry=ESTIMATOR._geometry, film_strike=False)
     assert off.update(memory, reading(stage=Stage.MOVING, wrench=tuple(push)))[1].strike_s == 0
+
+
+def approach_with_films(estimator, ra_mps2, ticks=3, wrench=tuple(np.zeros(6)),
+                        stage=Stage.MOVING):
+    """The estimates of `ticks` 5 ms ticks of the approach (or `stage`) with the films
+    reading ra_mps2 [m/s^2] and the wrist its approach-start wrench."""
+    memory, estimates = ContactMemory(), []
+    for k in range(ticks):
+        memory, estimate = estimator.update(memory, reading(
+            t=1.0 + 0.005 * k, stage=stage, wrench=wrench, ra_mps2=ra_mps2))
+        estimates.append(estimate)
+    return estimates
+
+
+def test_one_film_above_the_ra_onset_in_the_approach_is_a_strike_of_its_finger():
+    """The linkage hand: a light strike, nothing at the wrist, the right film alone rings."""
+    onset = TAXEL.ra_onset_mps2
+    estimates = approach_with_films(FILM_ESTIMATOR, (0.5 * onset, 2 * onset))
+    assert estimates[0].strike_s == 0.0 and estimates[-1].strike_s == pytest.approx(0.01)
+    assert estimates[-1].strike_s >= TAXEL.finger_strike.sustain_s
+    assert estimates[-1].strike_finger == "right" and estimates[-1].strike_by_film
+    assert estimates[-1].strike_force_n == 0.0
+    left = approach_with_films(FILM_ESTIMATOR, (-2 * onset, 0.0))[-1]  # RA's size counts
+    assert left.strike_finger == "left" and left.strike_s == pytest.approx(0.01)
+
+
+def test_one_film_counts_without_a_wrist_force_sense():
+    onset = TAXEL.ra_onset_mps2
+    estimate = approach_with_films(FILM_ESTIMATOR, (2 * onset, 0.0), wrench=None)[-1]
+    assert estimate.strike_finger == "left" and estimate.strike_s == pytest.approx(0.01)
+
+
+@pytest.mark.parametrize("films", [(2.0, 2.0), (0.5, 0.5), (0.0, 0.0)])
+def test_both_films_or_neither_above_the_ra_onset_is_no_film_strike(films):
+    onset = TAXEL.ra_onset_mps2
+    estimate = approach_with_films(FILM_ESTIMATOR, tuple(f * onset for f in films))[-1]
+    assert estimate.strike_s == 0.0 and not estimate.strike_by_film
+    assert estimate.strike_finger == ""
+
+
+def test_the_prismatic_hand_has_no_film_strike():
+    estimate = approach_with_films(ESTIMATOR, (0.0, 2 * TAXEL.ra_onset_mps2))[-1]
+    assert estimate.strike_s == 0.0 and estimate.strike_finger == ""
+    assert approach_with_films(ESTIMATOR, (0.0, 10.0), wrench=None)[-1].strike_s == 0.0
+
+
+def test_one_film_in_the_close_is_not_a_strike():
+    estimate = approach_with_films(FILM_ESTIMATOR, (0.0, 2 * TAXEL.ra_onset_mps2),
+                                   stage=Stage.CLOSING)[-1]
+    assert estimate.strike_s == 0.0 and not estimate.strike_by_film
+    assert estimate.ra_onset_finger == "right"  # the close's own rule reads it
+
+
+def test_a_film_strike_is_off_with_the_finger_strike_or_the_ra_onset():
+    strike_off = ContactEstimator(
+        taxel_config=TaxelAwareConfig(finger_strike=type(TAXEL.finger_strike)(enabled=False)),
+        taxel_contact_n=CONTACT_N, match_confirm_window_s=CONFIRM_S,
+        geometry=ESTIMATOR._geometry, film_strike=True)
+    onset_off = ContactEstimator(
+        taxel_config=TaxelAwareConfig(ra_onset_mps2=0.0), taxel_contact_n=CONTACT_N,
+        match_confirm_window_s=CONFIRM_S, geometry=ESTIMATOR._geometry, film_strike=True)
+    for estimator in (strike_off, onset_off):
+        assert approach_with_films(estimator, (0.0, 10.0))[-1].strike_s == 0.0
+
+
+def test_the_film_strike_is_the_linkage_hands():
+    for hand, films in (("linkage", True), ("prismatic", False)):
+        # what estimator_for_plan reads of a GraspPlan
+        plan = types.SimpleNamespace(object_width=0.045, object_height=0.11,
+                                     grasp_height=0.055, gripper_model=hand)
+        estimator = estimator_for_plan(TaxelAwareControllerConfig(), plan,
+                                       sa_rate_hz=SA_RATE_HZ)
+        struck = approach_with_films(estimator, (0.0, 10.0))[-1].strike_finger
+        assert struck == ("right" if films else ""), hand
 
 
 def test_a_finger_touching_alone_after_the_other_brackets_the_object():

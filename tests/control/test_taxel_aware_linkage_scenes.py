@@ -74,6 +74,16 @@ SCENES = {
         (("Reach", "Re-Reach", "finger_strike"),), first=True,
         check=lambda found, r: found[0].offset_m > 0.01
         and [t["code"] for t in r["transitions"]].count("finger_strike") == 1)),
+    # The box 15 mm farther than expected and 25 mm along the stroke: its far face 47.5 mm
+    # out, past the open left pad's 42.5 mm, the finger's front meets its near face late in
+    # the approach with under 1 N at the wrist, below finger_strike.force_n, while the left
+    # film alone rings above ra_onset_mps2. The film's strike backs off and shifts toward the
+    # left finger; without it (measured, dev seed 982) the finger pushed the box 36 mm, the
+    # close found nothing and closed_untouched searched 37 mm forward for it.
+    "finger_strike_light": (Scene("box", (0.015, 0.025), seed=982), Expect(
+        (("Reach", "Re-Reach", "finger_strike"),), first=True,
+        check=lambda found, r: found[0].offset_m > 0.01
+        and "closed_untouched" not in [t["code"] for t in r["transitions"]])),
     # The tall heavy box 19.5 mm along the stroke (its face 0.5 mm inside the open left pad)
     # and 19 mm farther than expected: at the close's first touch (openings 84-78 mm) the
     # pad's centre is 10.7-8.3 mm short of where it is at the box's 45 mm

@@ -226,6 +226,18 @@ def test_the_strike_backs_off_and_shifts_toward_the_struck_finger():
                                             pytest.approx((0.080 - WIDTH_M) / 2)))
 
 
+def test_one_films_strike_backs_off_toward_that_finger_once_sustained():
+    sustain_s = TAXEL.finger_strike.sustain_s
+    film = dict(strike_by_film=True, strike_finger="right", strike_force_n=0.1)
+    assert code(Mode.REACH, situation(estimate=dict(film, strike_s=0.5 * sustain_s))) != (
+        "finger_strike")
+    decision = decide(Mode.REACH, situation(estimate=dict(film, strike_s=sustain_s)))
+    assert decision.reason == ("the right finger struck the object during the approach "
+                               "(its film's RA, 0.1 N at the wrist)")
+    assert decision.action == ReReach(Shift(-TAXEL.approach_retreat_m,
+                                            pytest.approx(-(0.080 - WIDTH_M) / 2)))
+
+
 def test_the_approach_contact_backs_off_with_the_papers_shift_along_the_stroke():
     decision = decide(Mode.REACH, situation(contact=(False, True), estimate=dict(
         approach_contact_s=CONFIG.re_reach.one_sided_contact_s, approaching=True)))

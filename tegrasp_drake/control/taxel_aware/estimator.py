@@ -7,13 +7,15 @@ state and the rules read the ContactEstimate (Observation.estimate)."""
 import dataclasses
 import typing
 
-from tegrasp_drake.control.finger_strike import side_moment_nm, strike_force_n, struck_finger
+from tegrasp_drake.control.finger_strike import (FINGERS, side_moment_nm, strike_force_n,
+                                                  struck_finger)
 from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Mode, Stage
 from tegrasp_drake.control.taxel_aware.contact_geometry import (
     bracketed_object, caged_behind_pads, held_tilted, opposite_face, pushed_distance_m,
     release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces,
     untouched_reach_m)
 from tegrasp_drake.control.taxel_aware.grip_settling import grip_settled
+from tegrasp_drake.control.taxel_aware.hands import FILM_STRIKE_HANDS
 from tegrasp_drake.control.taxel_aware.ra_onset import onset_finger
 from tegrasp_drake.control.taxel_aware.touch_confirmed import (confirmed_delay_s,
                                                                match_confirm_window_s)
@@ -104,6 +106,7 @@ class ContactEstimate:
     Reach, confirmed or not; untouched_reach_m: how far beyond the pads' centres at the
     object's width an object no pad touched in the close has its centre
     (contact_geometry.untouched_reach_m); touched_before: ContactMemory.touched_before;
+    strike_by_film: the strike is one film's RA onset (ContactEstimator's film strike);
     ra_onset_finger, ra_onset_opening_m: ContactMemory's; ra_onset_topples: the push still to
     come from that opening would topple the object (contact_geometry.release_topples)."""
     shape: GraspContact
@@ -117,6 +120,7 @@ class ContactEstimate:
     strike_s: float = 0.0
     strike_force_n: float = 0.0
     strike_finger: str = ""
+    strike_by_film: bool = False
     topples_if_released: bool = False
     touched_beyond_pads: bool = False
     first_touch_finger: str = ""
@@ -154,11 +158,14 @@ class ObjectGeometry:
 class ContactEstimator:
     """Estimates the contact each tick; a taxel counts above taxel_contact_n [N]; a pad's
     touch confirms a Reach-Load match within match_confirm_window_s [s]
-    (touch_confirmed.match_confirm_window_s)."""
+    (touch_confirmed.match_confirm_window_s); film_strike: in the approach, one film's RA
+    above taxel_aware.ra_onset_mps2 is also a finger strike, of that finger
+    (hands.FILM_STRIKE_HANDS)."""
 
     def __init__(self, *, taxel_config, geometry: ObjectGeometry, taxel_contact_n: float,
-                 match_confirm_window_s: float):
+                 match_confirm_window_s: float, film_strike: bool):
         self._config = taxel_config
+        self._film_strike = film_strike
         self._geometry = geometry
         self._taxel_contact_n = taxel_contact_n
         self._match_confirm_window_s = match_confirm_window_s
@@ -239,21 +246,29 @@ class ContactEstimator:
                                    ra_onset_opening_m=r.opening_m)
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):
-        """The finger-strike sense: the updated memory and the estimate's strike fields."""
+        """The finger-strike sense: the updated memory and the estimate's strike fields. A
+        strike is the wrist force above finger_strike.force_n or, with film_strike, one film
+        alone above the RA onset threshold, which names its finger."""
         config = self._config.finger_strike
-        if not (config.enabled and r.approaching and r.wrench is not None):
+        wrist = r.wrench is not None
+        if not (config.enabled and r.approaching and (wrist or self._film_strike)):
             return memory, {}
-        baseline = memory.strike_baseline or tuple(float(x) for x in r.wrench)
-        force = strike_force_n(r.wrench, baseline)
-        striking = force > config.force_n
+        film = (onset_finger(r.ra_mps2, self._ra_onset_mps2) if self._film_strike
+                else None)
+        film_finger = film if film in FINGERS else ""
+        baseline = (memory.strike_baseline or tuple(float(x) for x in r.wrench)) if wrist else ()
+        force = strike_force_n(r.wrench, baseline) if wrist else 0.0
+        felt_at_wrist = force > config.force_n
+        striking = felt_at_wrist or bool(film_finger)
         since = _since(memory.strike_since, r.t, striking)
+        # the side moment is summed over the ticks the wrist feels the strike
         moment_sum = (memory.strike_moment_sum + side_moment_nm(r.wrench, baseline)
-                      if striking else 0.0)
-        finger = struck_finger(moment_sum, r.contact, config) or ""
+                      if felt_at_wrist else memory.strike_moment_sum if striking else 0.0)
+        finger = film_finger or struck_finger(moment_sum, r.contact, config) or ""
         memory = dataclasses.replace(memory, strike_baseline=baseline, strike_since=since,
                                      strike_moment_sum=moment_sum, strike_finger=finger)
         return memory, dict(strike_s=r.t - since if striking else 0.0, strike_force_n=force,
-                            strike_finger=finger)
+                            strike_finger=finger, strike_by_film=bool(film_finger))
 
     def _first_touch(self, memory: ContactMemory, r: ContactReading, shape: GraspContact,
                      first_load: bool) -> tuple[ContactMemory, bool]:
@@ -286,6 +301,7 @@ def estimator_for_plan(config, plan, *, sa_rate_hz: float) -> ContactEstimator:
     return ContactEstimator(
         taxel_config=config.taxel_aware, taxel_contact_n=config.taxel_contact_n,
         match_confirm_window_s=match_confirm_window_s(sa_rate_hz, config.update_period_s),
+        film_strike=plan.gripper_model in FILM_STRIKE_HANDS,
         geometry=ObjectGeometry(
             width_m=plan.object_width, height_m=plan.object_height,
             grasp_height_m=plan.grasp_height,

@@ -1,7 +1,8 @@
-"""Rule finger_strike (Reach, in the approach): a finger's front struck the
-object (control/finger_strike.py): back off approach_retreat_m along the Reach's path (the
-state machine's approach_retreat_target), shift toward the struck finger, approach again
-(docs/controller.md, "Finger strike")."""
+"""Rule finger_strike (Reach, in the approach): a finger's front struck the object, felt at
+the wrist (control/finger_strike.py) or, on the linkage hand, by that finger's film alone
+(estimator.ContactEstimator's film strike): back off approach_retreat_m along the Reach's
+path (the state machine's approach_retreat_target), shift toward the struck finger, approach
+again (docs/controller.md, "Finger strike")."""
 
 from tegrasp_drake.control.finger_strike import strike_shift
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
@@ -21,11 +22,14 @@ def back_off_and_shift(situation):
     who = f"the {finger} finger" if finger else "a finger (side unknown)"
     shift = Shift(-situation.config.taxel_aware.approach_retreat_m,
                   strike_shift(finger, e.opening_m, e.object_width_m))
+    felt = (f"its film's RA, {e.strike_force_n:.1f} N at the wrist" if e.strike_by_film
+            else f"{e.strike_force_n:.1f} N at the wrist")
     return re_reach_or_fail(situation, shift, f"{who} struck the object during the "
-                            f"approach ({e.strike_force_n:.1f} N at the wrist)")
+                            f"approach ({felt})")
 
 
 FINGER_STRIKE = Rule(
     "finger_strike", (Mode.REACH,), 10, strikes, back_off_and_shift,
-    when="the wrist force exceeded finger_strike.force_n for sustain_s in the approach",
+    when="the wrist force exceeded finger_strike.force_n, or (linkage hand) one film alone "
+    "read RA above taxel_aware.ra_onset_mps2, for sustain_s in the approach",
     then="ReReach(back off, toward the struck finger) or Failed")
