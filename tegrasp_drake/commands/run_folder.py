@@ -11,6 +11,7 @@ import re
 import shutil
 import tempfile
 
+from tegrasp_drake.events.event_file import INDEX_FILE
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, absent_folders,
@@ -29,9 +30,10 @@ REPLAY_KEY = "replay_html"  # result.json's entry for the replay --html wrote
 
 # What each command that writes a run folder leaves at its top level, the entries that say
 # whose run a folder holds; asked in this order, since a sensitivity study's folder holds a
-# transfer's entries too (its points.json beside them).
+# transfer's entries too (its points.json beside them). An events folder (record-events')
+# is one too: a run written into it would mix with the memorized events a sweep reads.
 RUN_OWNERS = (("sensitivity", ("points.json",)), ("transfer", ("cells", "events")),
-              ("sweep", ("trials",)), ("trial", RUN_FILES))
+              ("sweep", ("trials",)), ("trial", RUN_FILES), ("record-events", (INDEX_FILE,)))
 
 
 def run_owner(folder) -> tuple[str, str] | None:
@@ -54,10 +56,37 @@ def other_run_problem(folder, command: str, *, named: str | None = None) -> str 
                                                                       "transfer"):
         return None  # a sensitivity study is a transfer with its points.json beside it
     if named is not None:
-        return (f"{named} holds a `tegrasp {owner[0]}` run ({owner[1]}); give {command} a "
-                "folder of its own (not a run's folder)")
-    return (f"--out {folder} holds a `tegrasp {owner[0]}` run ({owner[1]}); give another "
-            f"--out for this {command} run")
+        return (f"{named} holds {held_run(owner)}; give {command} a folder of its own (not "
+                "a run's folder)")
+    return f"--out {folder} holds {held_run(owner)}; give another --out for this {command} run"
+
+
+def held_run(owner: tuple[str, str]) -> str:
+    """What a folder of run_owner `owner` holds, in words."""
+    command, entry = owner
+    if command == "record-events":
+        return f"memorized events ({entry})"
+    return f"a `tegrasp {command}` run ({entry})"
+
+
+def logs_folder_problem(logs, out) -> str | None:
+    """Why a sweep's --logs `logs` may not hold its trials' logs beside --out `out`, or None:
+    it holds a run or memorized events (run_owner), or is --out or inside one of --out's
+    run entries (its trials), whose files a log would mix with."""
+    owner = run_owner(logs)
+    if owner is not None:
+        return (f"--logs {logs} holds {held_run(owner)}; give the trials' logs a folder of "
+                "their own")
+    logs_path, out_path = pathlib.Path(logs).resolve(), pathlib.Path(out).resolve()
+    if logs_path == out_path:
+        return (f"--logs {logs} is the sweep's --out; give the trials' logs a folder of "
+                "their own")
+    for _, entries in RUN_OWNERS:
+        for entry in entries:
+            if logs_path.is_relative_to(out_path / entry):
+                return (f"--logs {logs} is inside --out {out}'s {entry}; give the trials' logs "
+                        "a folder of their own")
+    return None
 
 
 class RunFolderError(Exception):

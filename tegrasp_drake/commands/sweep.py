@@ -13,7 +13,7 @@ import importlib
 import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
-from tegrasp_drake.commands.run_folder import other_run_problem
+from tegrasp_drake.commands.run_folder import logs_folder_problem, other_run_problem
 from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
@@ -186,9 +186,13 @@ def plan_text(spec: SweepSpec, *, left: int | None = None, corrupt: dict | None 
         f"{'on' if r.sensor_noise else 'off'}"])
 
 
-def _check_logs_folder(logs) -> None:
-    """--logs names a folder this user can write (made if missing), before any trial;
-    OptionError (bad input, exit 1, as for --out) when it does not."""
+def _check_logs_folder(logs, out) -> None:
+    """--logs names a folder this user can write (made if missing), of its own (not a run's
+    or an events folder, not --out or its trials: run_folder.logs_folder_problem), before
+    any trial; OptionError (bad input, exit 1, as for --out) when it does not."""
+    problem = logs_folder_problem(logs, out)
+    if problem:
+        raise OptionError(problem)
     problem = folder_problem(logs)
     if problem:
         raise OptionError(f"--logs {logs}: {problem}; give a folder you can write for the "
@@ -391,7 +395,7 @@ def run(args) -> int:
             if args.events:
                 trial_function = bound_arguments(trial_function, events_dir=args.events)
             if args.logs:
-                _check_logs_folder(args.logs)
+                _check_logs_folder(args.logs, args.out)
                 trial_function = bound_arguments(trial_function, log_dir=args.logs)
             if args.dry_run:  # refused as the real run would refuse it, before any trial
                 left, corrupt = (trial_count(spec), {}) if args.benchmark else \

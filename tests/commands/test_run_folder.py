@@ -261,3 +261,54 @@ def test_a_run_into_a_folder_holding_another_commands_run_is_refused(command, in
     assert code == 1
     assert len(lines) == 1 and f"holds a `tegrasp {into}` run" in lines[0], lines
     assert sorted(path.name for path in folder.iterdir()) == before
+
+
+@pytest.mark.parametrize("command", ["trial", "sweep", "transfer", "sensitivity"])
+def test_a_run_into_an_events_folder_is_refused(command, tmp_path, capsys):
+    events = tmp_path / "events"
+    events.mkdir()
+    (events / "index.json").write_text("{}")
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(TRANSFER_SPEC if command == "transfer" else
+                    "parameters: [object.friction]\nsweep: {objects: [box], attempts: 1}\n")
+    arguments = {"transfer": [str(spec)], "sensitivity": [str(spec)],
+                 "sweep": ["--objects", "box", "--attempts", "1", "--trial-function",
+                           "tests.fake_trials:fake_trial", "--no-progress"],
+                 "trial": []}[command]
+    try:
+        code = cli.main([command, *arguments, "--out", str(events)])
+        lines = capsys.readouterr().err.strip().splitlines()
+    except SystemExit as exit_:
+        code, lines = 1, [str(exit_.code)]
+    assert code == 1
+    assert len(lines) == 1 and "holds memorized events (index.json)" in lines[0], lines
+    assert sorted(path.name for path in events.iterdir()) == ["index.json"]
+
+
+def _sweep_logs_into(logs, out, capsys) -> tuple[int, list[str]]:
+    code = cli.main(["sweep", "--objects", "box", "--attempts", "1", "--trial-function",
+                     "tests.fake_trials:fake_trial", "--no-progress", "--dry-run",
+                     "--out", str(out), "--logs", str(logs)])
+    return code, capsys.readouterr().err.strip().splitlines()
+
+
+@pytest.mark.parametrize("where", ["events", "trial run", "sweep run", "out", "out/trials",
+                                   "out/trials/below"])
+def test_sweep_logs_of_their_own_folder_only(where, tmp_path, capsys):
+    out = tmp_path / "out"
+    folders = _other_runs(tmp_path)
+    events = tmp_path / "events"
+    events.mkdir()
+    (events / "index.json").write_text("{}")
+    logs = {"events": events, "trial run": folders["trial"], "sweep run": folders["sweep"],
+            "out": out, "out/trials": out / "trials",
+            "out/trials/below": out / "trials" / "below"}[where]
+    code, lines = _sweep_logs_into(logs, out, capsys)
+    assert code == 1 and len(lines) == 1 and lines[0].count("--logs") == 1, lines
+    assert "give the trials' logs a folder of their own" in lines[0]
+    assert not (out / "trials" / "below").exists()
+
+
+def test_sweep_logs_beside_the_out_folder_are_taken(tmp_path, capsys):
+    code, lines = _sweep_logs_into(tmp_path / "logs", tmp_path / "out", capsys)
+    assert code == 0, lines
