@@ -15,6 +15,11 @@ from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
+# The farthest an object's height can be from the table top it started on [m]: in the hand,
+# the JACO2's 0.9 m reach from its base on the table (Kinova JACO2 specifications) plus the
+# object's own size, or fallen off the table to a floor below it; 2 m bounds either.
+MAX_HEIGHT_M = 2.0
+
 
 HOLD_REQUIRED_S = 3.0  # the paper (Sec. IV-C): a hold succeeds when held at least 3 s
 # An event transition earlier than its physical event by more than this [s] is a false
@@ -68,8 +73,9 @@ class TrialResult:
     final_mode: Mode = Mode.REACH
     hold_time_s: float | None = bounded(None, low=0.0, unit="s", why="a duration")
     # The object's lowest point above its start: its highest minus its start, so never below.
-    lift_height_m: float | None = bounded(None, low=0.0, unit="m",
-                                          why="the highest point of a path that starts at 0")
+    lift_height_m: float | None = bounded(None, low=0.0, high=MAX_HEIGHT_M, unit="m",
+                                          why="the highest point of a path that starts at 0, "
+                                              "within the arm's reach")
     final_tilt_deg: float | None = bounded(None, low=0.0, high=180.0, unit="deg",
                                            why="the angle between the object's up and world up")
     placement_error_m: float | None = bounded(None, low=0.0, unit="m", why="a distance")
@@ -78,8 +84,9 @@ class TrialResult:
     # Unload began, the gripper's open command: the height it was let go from; None when
     # no transition went to Unload (and in results written before the field).
     release_height_m: float | None = bounded(
-        None, unit="m", why="a height either side of the table top (pressed into it, or "
-        "fallen past its edge)")
+        None, low=-MAX_HEIGHT_M, high=MAX_HEIGHT_M, unit="m",
+        why="a height either side of the table top (pressed into it, or fallen past its edge), "
+            "within the arm's reach")
     # The physical event behind each event transition taken, and "hit" [s]
     # (trial.physical_event_times); None where it was not found.
     physical_events: dict[str, float | None] = bounded(

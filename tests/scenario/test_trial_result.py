@@ -114,6 +114,8 @@ def _load_lift(t: float) -> Transition:
     ({"sim_time_s": -3.0}, "field 'sim_time_s' must be at least 0"),
     ({"lift_height_m": float("nan")}, "field 'lift_height_m' must be a finite number"),
     ({"final_tilt_deg": 270.0}, "field 'final_tilt_deg' must lie in [0, 180]"),
+    ({"lift_height_m": 42.0}, "field 'lift_height_m' must lie in [0, 2]"),
+    ({"release_height_m": -5.0}, "field 'release_height_m' must lie in [-2, 2]"),
     ({"false_triggers": -2}, "field 'false_triggers' must be at least 0"),
     ({"offset_m": [float("nan"), 0.0]}, "field 'offset_m[0]' must be a finite number"),
     ({"seed": -1}, "field 'seed' must lie in"),
