@@ -265,6 +265,42 @@ def run(args) -> int:
                                 result_path)
 
 
+# The entries every hardware run's result.json holds (HardwareRunResult.as_dict).
+HARDWARE_RESULT_KEYS = ("transitions", "faults", "log", "device_counters")
+HARDWARE_RESULT_MAX_BYTES = 16 * 1024 * 1024  # a run's result: its transitions and counters
+
+
+def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
+    """Why --overwrite may not replace `path`, in words that follow it, or None: the earlier
+    file must be what a hardware run writes there, an LCM log (empty, or starting with
+    LCM_LOG_START) or a run's result (a JSON object with HARDWARE_RESULT_KEYS); the user's
+    notes saved under a run's name are not replaced. Only the log's head is read."""
+    from tegrasp_drake.rig.files import JsonFileError, read_json_file
+    from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
+    remedy = "give another --log, or remove it yourself"
+    if is_log:
+        try:
+            with open(path, "rb") as existing:
+                head = existing.read(len(LCM_LOG_START))
+        except OSError as error:
+            return f"cannot be read to check what it is ({error.strerror or error}); {remedy}"
+        if head and head != LCM_LOG_START:
+            return f"exists and is not an LCM log (its first bytes are not LCM's); {remedy}"
+        return None
+
+    def not_a_result(data) -> str | None:
+        missing = [key for key in HARDWARE_RESULT_KEYS
+                   if not isinstance(data, dict) or key not in data]
+        return (f"is not a hardware run's result (no {', '.join(missing)})" if missing
+                else None)
+    try:
+        read_json_file(path, limit=HARDWARE_RESULT_MAX_BYTES, kind="a hardware run's result",
+                       check=not_a_result)
+    except JsonFileError as error:
+        return f"exists and {error.problem}; {remedy}"
+    return None
+
+
 def _run_holding_log(args, scenario, config, events, corrective, log, result_path) -> int:
     from tegrasp_drake.runs.hardware_run import LOG_MIN_FREE_BYTES, run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
@@ -274,6 +310,10 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
     earlier = [taken for taken in (pathlib.Path(log), result_path) if taken.exists()]
+    for taken in earlier:  # --overwrite replaces a run's log and result, nothing else
+        problem = earlier_run_file_problem(taken, is_log=taken == pathlib.Path(log))
+        if problem:
+            raise SystemExit(f"tegrasp: error: --log {log}: {taken} {problem}")
     problem = free_space_problem(  # before the devices come up
         pathlib.Path(log).parent, LOG_MIN_FREE_BYTES, "its log (ten seconds of the bus)")
     if problem:

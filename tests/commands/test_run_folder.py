@@ -118,6 +118,31 @@ def test_hardware_refuses_an_existing_log_before_connecting(tmp_path, capsys):
     assert result_path_beside_log(log) == tmp_path / "run.result.json"
 
 
+LCM_EVENT = bytes.fromhex("EDA1DA01") + bytes(24)  # an LCM log's first event's head
+
+
+@pytest.mark.parametrize("log_bytes, result_text, blamed", [
+    (b"PK\x03\x04 a trial.npz copied here", None, "run.lcmlog exists and is not an LCM log"),
+    (LCM_EVENT, '{"mine": true}', "run.result.json exists and is not a hardware run's result"),
+    (LCM_EVENT, "my notes", "run.result.json exists and is not valid JSON"),
+])
+def test_hardware_overwrite_replaces_only_a_runs_log_and_result(log_bytes, result_text, blamed,
+                                                                 tmp_path):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    log, result = tmp_path / "run.lcmlog", tmp_path / "run.result.json"
+    log.write_bytes(log_bytes)
+    if result_text is not None:
+        result.write_text(result_text)
+    with pytest.raises(SystemExit) as exit_info:
+        cli.main(["hardware", "--config", str(config), "--log", str(log), "--overwrite"])
+    message = str(exit_info.value.code)
+    assert message.startswith("tegrasp: error: --log ") and "\n" not in message
+    assert blamed in message and "remove it yourself" in message
+    assert log.read_bytes() == log_bytes
+    assert result_text is None or result.read_text() == result_text
+
+
 def test_a_hardware_result_is_json(tmp_path):
     fault = DeviceFault(device="gripper", kind="DEVICE_FAULT", description="overcurrent",
                         code=0x0E, since_sim_time=3.2, since_wall_time=1.7e9)
