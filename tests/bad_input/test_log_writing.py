@@ -21,13 +21,14 @@ from tegrasp_drake.sweep.trial_function import trial_log_name
 from tests.bad_input.probes import assert_one_line_error, folder_contents, run_cli
 from tests.fake_trials import whole_result
 from tests.runs.test_hardware_output_safety import disk_with_free_bytes
+from tests.runs.earlier_hardware_run import EARLIER_LOG
 
 
 def test_a_hardware_run_whose_devices_do_not_come_up_keeps_the_earlier_log(tmp_path,
                                                                            monkeypatch, capfd):
     monkeypatch.chdir(tmp_path)
     (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    (tmp_path / "old.lcmlog").write_bytes(b"an earlier run's log")
+    (tmp_path / "old.lcmlog").write_bytes(EARLIER_LOG)
     code = cli.main(["hardware", "--config", "hw.yaml", "--config-set",
                      "tactile.port=/dev/no_such_port", "--config-set",
                      "gripper.port=/dev/no_such_gripper_port", "--config-set", "ready_timeout=1",
@@ -36,7 +37,7 @@ def test_a_hardware_run_whose_devices_do_not_come_up_keeps_the_earlier_log(tmp_p
     captured = capfd.readouterr()
     assert code == 1, captured
     assert "tegrasp: error:" in captured.err and "error" not in captured.out  # on stderr
-    assert (tmp_path / "old.lcmlog").read_bytes() == b"an earlier run's log"
+    assert (tmp_path / "old.lcmlog").read_bytes() == EARLIER_LOG
     assert sorted(p.name for p in tmp_path.iterdir()) == ["hw.yaml", "old.lcmlog"]
 
 

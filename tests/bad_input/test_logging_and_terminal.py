@@ -230,13 +230,14 @@ def test_verbose_hardware_and_emulate_log_their_steps_on_stderr(tmp_path, ideal_
     from tegrasp_drake.emulators.emulator_process import EmulatedDevices, EmulatorProcess
     from tegrasp_drake.hardware.config import hardware_config_to_yaml
     from tests.loaded_host import tolerate_a_loaded_host
+    from tests.runs.earlier_hardware_run import EARLIER_LOG, EARLIER_RESULT
     trial = ideal_grasp_log("box").save(tmp_path / "box.npz")
     url = f"udpm://239.255.76.67:{7600 + (os.getpid() * 7) % 100}?ttl=0"
     log = tmp_path / "hw" / "run.lcmlog"
     log.parent.mkdir()
-    log.write_text("the earlier run's log")
+    log.write_bytes(EARLIER_LOG)
     result = result_path_beside_log(log)
-    result.write_text("{}")
+    result.write_text(EARLIER_RESULT)
     with EmulatedDevices(lcm_url=url, trial=trial) as devices:
         config = tolerate_a_loaded_host(devices.config)
         (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(config))
@@ -254,7 +255,7 @@ def test_verbose_hardware_and_emulate_log_their_steps_on_stderr(tmp_path, ideal_
         assert any(all(word in line for word in words)
                    for line in done.stderr.splitlines()), (words, done.stderr)
     assert "replaced" not in done.stdout and "the run started" not in done.stdout
-    assert log.read_bytes() != b"the earlier run's log"
+    assert log.read_bytes() != EARLIER_LOG
     replayed = subprocess.run([sys.executable, "-m", "tegrasp_drake", "replay", "-vv",
                                str(log)], capture_output=True, text=True, timeout=300)
     assert replayed.returncode == 0, replayed.stderr

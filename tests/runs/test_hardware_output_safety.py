@@ -11,6 +11,7 @@ import pytest
 from tegrasp_drake import cli
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.runs import hardware_run
+from tests.runs.earlier_hardware_run import EARLIER_LOG, EARLIER_RESULT
 
 
 @pytest.fixture
@@ -18,8 +19,8 @@ def earlier_run(tmp_path, monkeypatch):
     """A hardware config (devices that are not there) and an earlier run's log and result."""
     monkeypatch.chdir(tmp_path)
     (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    (tmp_path / "run.lcmlog").write_bytes(b"the earlier run's log")
-    (tmp_path / "run.result.json").write_text('{"earlier": true}\n')
+    (tmp_path / "run.lcmlog").write_bytes(EARLIER_LOG)
+    (tmp_path / "run.result.json").write_text(EARLIER_RESULT)
     return tmp_path
 
 
@@ -50,7 +51,7 @@ def test_a_second_run_on_a_log_another_run_writes_is_refused(earlier_run):
             cli.main(HARDWARE)
     message = str(refused.value.code)
     assert "another tegrasp hardware run is writing it" in message and "\n" not in message
-    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+    assert (earlier_run / "run.lcmlog").read_bytes() == EARLIER_LOG
 
 
 def disk_with_free_bytes(monkeypatch, free: int):
@@ -69,15 +70,15 @@ def test_a_log_on_a_disk_too_full_for_it_is_refused_before_the_devices(earlier_r
     with pytest.raises(SystemExit) as refused:
         cli.main(HARDWARE)
     assert "40 kB free" in str(refused.value.code) and "1 MB" in str(refused.value.code)
-    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+    assert (earlier_run / "run.lcmlog").read_bytes() == EARLIER_LOG
 
 
 def test_a_failed_run_keeps_the_earlier_runs_log_and_result(earlier_run, monkeypatch, capfd):
     monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(
         log_fault="the LCM log stopped: the disk holding it has less than 1 MB free"))
     assert cli.main(HARDWARE) == 2
-    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
-    assert (earlier_run / "run.result.json").read_text() == '{"earlier": true}\n'
+    assert (earlier_run / "run.lcmlog").read_bytes() == EARLIER_LOG
+    assert (earlier_run / "run.result.json").read_text() == EARLIER_RESULT
     failed = earlier_run / "run.failed.lcmlog"
     assert failed.read_bytes() == b"this run's log"
     result = json.loads((earlier_run / "run.failed.result.json").read_text())
@@ -97,7 +98,7 @@ def test_a_failed_run_replaces_the_earlier_failed_runs_pair_and_names_it(earlier
     (earlier_run / "run.failed.result.json").write_text('{"earlier failed": true}\n')
     monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(log_fault=FAULT))
     assert cli.main(HARDWARE) == 2
-    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+    assert (earlier_run / "run.lcmlog").read_bytes() == EARLIER_LOG
     assert (earlier_run / "run.failed.lcmlog").read_bytes() == b"this run's log"
     assert sorted(path.name for path in earlier_run.iterdir()) == [
         "hw.yaml", "run.failed.lcmlog", "run.failed.result.json", "run.lcmlog",
@@ -125,11 +126,11 @@ def test_a_failed_run_of_a_log_without_a_suffix_keeps_the_earlier_result(tmp_pat
     """LOG.failed's result would be named as LOG's own (the stem is LOG): it gets .lcmlog."""
     monkeypatch.chdir(tmp_path)
     (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    (tmp_path / "run").write_bytes(b"the earlier run's log")
-    (tmp_path / "run.result.json").write_text('{"earlier": true}\n')
+    (tmp_path / "run").write_bytes(EARLIER_LOG)
+    (tmp_path / "run.result.json").write_text(EARLIER_RESULT)
     monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(log_fault=FAULT))
     assert cli.main(HARDWARE_TO + ["run"]) == 2
-    assert (tmp_path / "run.result.json").read_text() == '{"earlier": true}\n'
+    assert (tmp_path / "run.result.json").read_text() == EARLIER_RESULT
     assert (tmp_path / "run.failed.lcmlog").read_bytes() == b"this run's log"
     assert (tmp_path / "run.failed.result.json").exists()
 
@@ -259,7 +260,7 @@ def test_only_the_newest_unfinished_runs_log_is_kept_and_the_replaced_one_named(
     assert kept.read_bytes() == LCM_LOG_START + b"run 2"
     assert sorted(path.name for path in earlier_run.iterdir()) == [
         "hw.yaml", "run.incomplete.lcmlog", "run.lcmlog", "run.result.json"]
-    assert (earlier_run / "run.lcmlog").read_bytes() == b"the earlier run's log"
+    assert (earlier_run / "run.lcmlog").read_bytes() == EARLIER_LOG
 
 
 def test_a_completed_log_named_as_an_unfinished_ones_is_never_replaced(earlier_run,
