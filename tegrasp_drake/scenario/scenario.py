@@ -199,6 +199,13 @@ def _check_controller(scenario: Scenario, source: str) -> None:
     if problem is not None:
         field, words, value = problem
         require(False, source, f"controller.{field}", words, value)
+    lift_load = getattr(controller, "lift_load", None)
+    if lift_load is not None:  # Lift-Load grips at min(grip x force_factor, this cap)
+        require(lift_load.max_grip_force_n >= scenario.grasp.grip_force, source,
+                "controller.lift_load.max_grip_force_n",
+                f"must be at least grasp.grip_force ({scenario.grasp.grip_force:g} N): below "
+                "it a slip's Lift-Load would loosen the grip; raise it or lower "
+                "grasp.grip_force", lift_load.max_grip_force_n)
 
 
 # What relates fields, or belongs to Drake's own config classes; each message says why.
