@@ -16,8 +16,8 @@ from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 
 from tegrasp_drake.control.controller_registry import (
-    CONTROLLER_CLASSES, ControllerConfig, UnknownControllerError, controller_entry,
-    controller_named, foreign_setting, select_controller_tag)
+    CONTROLLER_CLASSES, CONTROLLER_NAMES, ControllerConfig, UnknownControllerError,
+    controller_entry, controller_named, foreign_setting, select_controller_tag)
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
@@ -485,7 +485,8 @@ def sample_rates_hz(scenario: Scenario) -> tuple[float, float]:
 
 
 @public_api
-def with_controller(scenario: Scenario, name: str) -> Scenario:
+def with_controller(scenario: Scenario,
+                    name: typing.Annotated[str, Choice(CONTROLLER_NAMES)]) -> Scenario:
     """`scenario` run by the controller called `name` (controller_config.CONTROLLER_NAMES),
     keeping the settings its config class shares with the scenario's controller."""
     return dataclasses.replace(scenario, controller=controller_named(
