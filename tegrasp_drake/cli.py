@@ -29,12 +29,29 @@ COMMAND_MODULES = (
 )
 
 
-class _Parser(argparse.ArgumentParser):
-    """argparse's parser, quoting the user's text safely in usage errors (rig/files.py)."""
+class CommandLineParser(argparse.ArgumentParser):
+    """argparse's parser (the `tegrasp` command's and, by add_subparsers, each
+    subcommand's), ending a command line that does not parse with one line on stderr,
+    `tegrasp sweep: error: <what> (see tegrasp sweep --help)`, the user's text quoted
+    safely (rig/files.error_line), and EXIT_USAGE; argparse's own error prints the usage
+    block first, many lines."""
 
     def error(self, message):
-        from tegrasp_drake.rig.files import one_line
-        super().error(one_line(message))
+        from tegrasp_drake.rig.files import error_line
+        self.exit(error_boundary.EXIT_USAGE,
+                  f"{self.prog}: error: {error_line(message)} (see {self.prog} --help)\n")
+
+    def parse_args(self, args=None, namespace=None):
+        """argparse's parse_args, an argument no parser knows refused by the subcommand's
+        parser (`tegrasp record-events: error: unrecognized arguments: ...`), not the top's."""
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            subparsers = [a for a in self._actions
+                          if isinstance(a, argparse._SubParsersAction)]
+            command = (subparsers[0].choices.get(getattr(parsed, subparsers[0].dest, None))
+                       if subparsers else None)
+            (command or self).error(f"unrecognized arguments: {' '.join(extras)}")
+        return parsed
 
     def parse_known_args(self, args=None, namespace=None):
         """A command with an optional positional (`plot signals -v LOG`) takes it after its
@@ -76,7 +93,7 @@ def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
+    parser = CommandLineParser(
         prog="tegrasp",
         description="Tactile-event grasping with memorized triggers, on Drake.")
     subparsers = parser.add_subparsers(dest="command", required=True)
