@@ -10,6 +10,7 @@ import math
 import pathlib
 import typing
 
+import numpy as np
 import yaml
 from pydrake.common.yaml import yaml_dump_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
@@ -230,6 +231,53 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
                 "no hit)", disturbance.hit_time_s)
 
 
+# Every arm move, scripted or corrective, follows a minimum-jerk profile
+# (control/motion_profiles.py): s = 10 tau^3 - 15 tau^4 + 6 tau^5 peaks at ds/dtau = 15/8 at
+# mid-move, so a move of d metres over T seconds asks 15/8 d / T of the hand.
+MINIMUM_JERK_PEAK_SPEED = 15.0 / 8.0
+
+
+def _hand_moves(scenario: Scenario):
+    """(duration field, distance [m], duration [s], what moves) of each arm move the trial
+    may ask: each phase of the grasp script, and the closed-loop controller's own moves
+    (Avoid's, a Re-Reach's shift of at most half the stroke as the paper's, the retract
+    after Unload)."""
+    from tegrasp_drake.control.scripted_grasp import plan_scripted_grasp
+    from tegrasp_drake.robotiq.units import STROKE_M
+    for segment in plan_scripted_grasp(grasp_plan(scenario)):
+        distance = float(np.linalg.norm(segment.X_end.translation()
+                                        - segment.X_start.translation()))
+        yield (f"grasp.{segment.phase}_s", distance,
+               getattr(scenario.grasp, f"{segment.phase}_s"),
+               f"the {segment.phase.capitalize()} phase")
+    controller = scenario.controller
+    if not controller_entry(controller).closed_loop:
+        return
+    yield ("controller.avoid.move_s", controller.avoid.distance_m, controller.avoid.move_s,
+           "Avoid, controller.avoid.distance_m")
+    yield ("controller.re_reach.move_s", STROKE_M / 2, controller.re_reach.move_s,
+           "a Re-Reach's shift, up to half the 85 mm stroke")
+    yield ("grasp.retract_s", scenario.grasp.retract_distance, scenario.grasp.retract_s,
+           "the retract after Unload, grasp.retract_distance")
+
+
+def _check_hand_speeds(scenario: Scenario, source: str) -> None:
+    """Each arm move's peak speed against the most the arm can follow
+    (cartesian_arm_controller.max_hand_speed_mps): a faster one leaves the differential IK
+    behind ("stuck") and the trial would not do what its script says."""
+    from tegrasp_drake.control.cartesian_arm_controller import max_hand_speed_mps
+    limit = max_hand_speed_mps()
+    for field, distance, duration, what in _hand_moves(scenario):
+        if distance > 0 and MINIMUM_JERK_PEAK_SPEED * distance > limit * duration:
+            shortest = MINIMUM_JERK_PEAK_SPEED * distance / limit
+            require(False, source, field,
+                    f"is too short to move the hand {distance * 1000:.0f} mm ({what}): its "
+                    f"minimum-jerk move peaks at {MINIMUM_JERK_PEAK_SPEED * distance / duration:.3g} m/s, "
+                    f"more than the JACO2's hand can move ({limit:.2f} m/s: its joints' "
+                    f"speed limits times its 0.9 m reach); give it at least "
+                    f"{math.ceil(shortest * 1000) / 1000:g} s", duration)
+
+
 def script_duration(scenario: Scenario) -> float:
     """When the scenario's scripted grasp ends [s of simulated time]."""
     from tegrasp_drake.control.scripted_grasp import plan_duration, plan_scripted_grasp
@@ -300,6 +348,7 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
             "confirm with --allow-long (LoadScenario(..., allow_long=True))")
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario, source)
+    _check_hand_speeds(scenario, source)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
     if problem:
         field, words, value = problem
