@@ -428,7 +428,7 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`python -m tegrasp_drake.commands.sweep [options]`, the same as `tegrasp sweep`."""
-    from tegrasp_drake.cli import CommandLineParser
+    from tegrasp_drake.commands.command_line_parser import CommandLineParser
     parser = CommandLineParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0],
                                epilog=EPILOG,
                                formatter_class=argparse.RawDescriptionHelpFormatter)
