@@ -268,14 +268,14 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
     from tegrasp_drake.control.cartesian_arm_controller import max_hand_speed_mps
     limit = max_hand_speed_mps()
     for field, distance, duration, what in _hand_moves(scenario):
-        if distance > 0 and MINIMUM_JERK_PEAK_SPEED * distance > limit * duration:
-            shortest = MINIMUM_JERK_PEAK_SPEED * distance / limit
+        peak_distance = MINIMUM_JERK_PEAK_SPEED * distance
+        if distance > 0 and peak_distance > limit * duration:
             require(False, source, field,
                     f"is too short to move the hand {distance * 1000:.0f} mm ({what}): its "
-                    f"minimum-jerk move peaks at {MINIMUM_JERK_PEAK_SPEED * distance / duration:.3g} m/s, "
+                    f"minimum-jerk move peaks at {peak_distance / duration:.3g} m/s, "
                     f"more than the JACO2's hand can move ({limit:.2f} m/s: its joints' "
                     f"speed limits times its 0.9 m reach); give it at least "
-                    f"{math.ceil(shortest * 1000) / 1000:g} s", duration)
+                    f"{math.ceil(peak_distance / limit * 1000) / 1000:g} s", duration)
 
 
 def script_duration(scenario: Scenario) -> float:
