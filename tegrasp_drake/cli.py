@@ -11,6 +11,7 @@ import signal
 import sys
 
 from tegrasp_drake.commands import error_boundary, output_streams
+from tegrasp_drake.commands.command_line_parser import CommandLineParser
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 
 # Each entry is a module with a register(subparsers) function. Modules are imported only
@@ -27,28 +28,6 @@ COMMAND_MODULES = (
     "tegrasp_drake.commands.hardware",
     "tegrasp_drake.commands.replay",
 )
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse's parser, quoting the user's text safely in usage errors (rig/files.py)."""
-
-    def error(self, message):
-        from tegrasp_drake.rig.files import one_line
-        super().error(one_line(message))
-
-    def parse_known_args(self, args=None, namespace=None):
-        """A command with an optional positional (`plot signals -v LOG`) takes it after its
-        options too: argparse alone fills an optional positional with its default when an
-        option comes first, and then refuses the positional as an unrecognized argument."""
-        optional_positional = any(not action.option_strings and action.nargs in ("?", "*")
-                                  for action in self._actions)
-        if not optional_positional or getattr(self, "_intermixing", False):
-            return super().parse_known_args(args, namespace)
-        self._intermixing = True  # parse_known_intermixed_args calls parse_known_args
-        try:
-            return self.parse_known_intermixed_args(args, namespace)
-        finally:
-            self._intermixing = False
 
 
 # The arguments that name a file or folder, by their `dest`: an empty one ('' from an unset
@@ -76,7 +55,7 @@ def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(
+    parser = CommandLineParser(
         prog="tegrasp",
         description="Tactile-event grasping with memorized triggers, on Drake.")
     subparsers = parser.add_subparsers(dest="command", required=True)

@@ -6,6 +6,8 @@
   guessed parameters over their ranges.
 - emulate.py, hardware.py, replay.py: emulated devices; the run on them; its log replayed.
 - plot.py: the paper's figures from a log or a results folder.
+- command_line_parser.py: the parser of every command, which refuses a command line that
+  does not parse in one line.
 - scenario_args.py, viewer_args.py, verbosity.py, events_option.py: options shared by the
   commands.
 - run_folder.py, progress.py: where a run's files go; the progress bar.

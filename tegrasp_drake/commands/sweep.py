@@ -432,9 +432,10 @@ def run(args) -> int:
 
 def main(argv=None) -> int:
     """`python -m tegrasp_drake.commands.sweep [options]`, the same as `tegrasp sweep`."""
-    parser = argparse.ArgumentParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0],
-                                     epilog=EPILOG,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    from tegrasp_drake.commands.command_line_parser import CommandLineParser
+    parser = CommandLineParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0],
+                               epilog=EPILOG,
+                               formatter_class=argparse.RawDescriptionHelpFormatter)
     add_arguments(parser)
     add_verbosity_arguments(parser)
     args = parser.parse_args(argv)

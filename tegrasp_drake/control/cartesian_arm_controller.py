@@ -9,6 +9,7 @@ from pydrake.systems.primitives import DiscreteDerivative, Multiplexer
 
 from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
 from tegrasp_drake.modelgen import jaco2_dh
+from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_REACH_M
 
 JOINT_SPEED_MARGIN = 0.9  # use at most 90 % of each joint's published top speed
 
@@ -19,6 +20,16 @@ def jaco_joint_limits():
     upper = np.array([j.upper if j.upper is not None else np.inf for j in jaco2_dh.JOINTS])
     speed = np.array([j.max_speed for j in jaco2_dh.JOINTS]) * JOINT_SPEED_MARGIN
     return lower, upper, speed
+
+
+def max_hand_speed_mps() -> float:
+    """The fastest [m/s] the differential IK can move the grasp frame, bounded from above:
+    a joint turning at w moves the frame at w times its distance from the joint's axis, at
+    most the JACO2's reach (JACO2_REACH_M, 0.9 m, Kinova's specification), and the frame's
+    speed is at most the sum over the six joints, each at its limit here (90 % of the
+    published 36 deg/s of joints 1-3 and 48 deg/s of joints 4-6): 3.56 m/s. A bound, not
+    what every pose reaches: a move asking more is one the arm cannot follow anywhere."""
+    return float(np.sum(jaco_joint_limits()[2]) * JACO2_REACH_M)
 
 
 def AddCartesianArmController(builder, *, position_measured, velocity_measured,

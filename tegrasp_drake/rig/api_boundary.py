@@ -69,6 +69,7 @@ class Folder:
 INPUT_FOLDER = Folder(exists=True)                    # read from
 OUTPUT_FOLDER = Folder(exists=False, writable=True)   # written to, made if need be
 UPDATED_FOLDER = Folder(exists=True, writable=True)   # read from and written to
+SEARCHED_FOLDER = Folder(exists=False)                # read from if there (a search path's)
 
 
 # A config class's method (source) -> None that raises ConfigError naming the field unless

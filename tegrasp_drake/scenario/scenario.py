@@ -10,14 +10,15 @@ import math
 import pathlib
 import typing
 
+import numpy as np
 import yaml
 from pydrake.common.yaml import yaml_dump_typed
 from pydrake.multibody.plant import MultibodyPlantConfig
 from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 
 from tegrasp_drake.control.controller_registry import (
-    CONTROLLER_CLASSES, ControllerConfig, UnknownControllerError, controller_entry,
-    controller_named, foreign_setting, select_controller_tag)
+    CONTROLLER_CLASSES, CONTROLLER_NAMES, ControllerConfig, UnknownControllerError,
+    controller_entry, controller_named, foreign_setting, select_controller_tag)
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
@@ -199,6 +200,13 @@ def _check_controller(scenario: Scenario, source: str) -> None:
     if problem is not None:
         field, words, value = problem
         require(False, source, f"controller.{field}", words, value)
+    lift_load = getattr(controller, "lift_load", None)
+    if lift_load is not None:  # Lift-Load grips at min(grip x force_factor, this cap)
+        require(lift_load.max_grip_force_n >= scenario.grasp.grip_force, source,
+                "controller.lift_load.max_grip_force_n",
+                f"must be at least grasp.grip_force ({scenario.grasp.grip_force:g} N): below "
+                "it a slip's Lift-Load would loosen the grip; raise it or lower "
+                "grasp.grip_force", lift_load.max_grip_force_n)
 
 
 # What relates fields, or belongs to Drake's own config classes; each message says why.
@@ -221,6 +229,53 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
         require(disturbance.hit_time_s < end, source, "disturbance.hit_time_s",
                 f"must come before the grasp's script ends at {end:.1f} s (or be negative: "
                 "no hit)", disturbance.hit_time_s)
+
+
+# Every arm move, scripted or corrective, follows a minimum-jerk profile
+# (control/motion_profiles.py): s = 10 tau^3 - 15 tau^4 + 6 tau^5 peaks at ds/dtau = 15/8 at
+# mid-move, so a move of d metres over T seconds asks 15/8 d / T of the hand.
+MINIMUM_JERK_PEAK_SPEED = 15.0 / 8.0
+
+
+def _hand_moves(scenario: Scenario):
+    """(duration field, distance [m], duration [s], what moves) of each arm move the trial
+    may ask: each phase of the grasp script, and the closed-loop controller's own moves
+    (Avoid's, a Re-Reach's shift of at most half the stroke as the paper's, the retract
+    after Unload)."""
+    from tegrasp_drake.control.scripted_grasp import plan_scripted_grasp
+    from tegrasp_drake.robotiq.units import STROKE_M
+    for segment in plan_scripted_grasp(grasp_plan(scenario)):
+        distance = float(np.linalg.norm(segment.X_end.translation()
+                                        - segment.X_start.translation()))
+        yield (f"grasp.{segment.phase}_s", distance,
+               getattr(scenario.grasp, f"{segment.phase}_s"),
+               f"the {segment.phase.capitalize()} phase")
+    controller = scenario.controller
+    if not controller_entry(controller).closed_loop:
+        return
+    yield ("controller.avoid.move_s", controller.avoid.distance_m, controller.avoid.move_s,
+           "Avoid, controller.avoid.distance_m")
+    yield ("controller.re_reach.move_s", STROKE_M / 2, controller.re_reach.move_s,
+           "a Re-Reach's shift, up to half the 85 mm stroke")
+    yield ("grasp.retract_s", scenario.grasp.retract_distance, scenario.grasp.retract_s,
+           "the retract after Unload, grasp.retract_distance")
+
+
+def _check_hand_speeds(scenario: Scenario, source: str) -> None:
+    """Each arm move's peak speed against the most the arm can follow
+    (cartesian_arm_controller.max_hand_speed_mps): a faster one leaves the differential IK
+    behind ("stuck") and the trial would not do what its script says."""
+    from tegrasp_drake.control.cartesian_arm_controller import max_hand_speed_mps
+    limit = max_hand_speed_mps()
+    for field, distance, duration, what in _hand_moves(scenario):
+        peak_distance = MINIMUM_JERK_PEAK_SPEED * distance
+        if distance > 0 and peak_distance > limit * duration:
+            require(False, source, field,
+                    f"is too short to move the hand {distance * 1000:.0f} mm ({what}): its "
+                    f"minimum-jerk move peaks at {peak_distance / duration:.3g} m/s, "
+                    f"more than the JACO2's hand can move ({limit:.2f} m/s: its joints' "
+                    f"speed limits times its 0.9 m reach); give it at least "
+                    f"{math.ceil(peak_distance / limit * 1000) / 1000:g} s", duration)
 
 
 def script_duration(scenario: Scenario) -> float:
@@ -293,6 +348,7 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
             "confirm with --allow-long (LoadScenario(..., allow_long=True))")
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario, source)
+    _check_hand_speeds(scenario, source)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
     if problem:
         field, words, value = problem
@@ -478,7 +534,8 @@ def sample_rates_hz(scenario: Scenario) -> tuple[float, float]:
 
 
 @public_api
-def with_controller(scenario: Scenario, name: str) -> Scenario:
+def with_controller(scenario: Scenario,
+                    name: typing.Annotated[str, Choice(CONTROLLER_NAMES)]) -> Scenario:
     """`scenario` run by the controller called `name` (controller_config.CONTROLLER_NAMES),
     keeping the settings its config class shares with the scenario's controller."""
     return dataclasses.replace(scenario, controller=controller_named(

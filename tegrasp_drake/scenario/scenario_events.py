@@ -3,13 +3,15 @@ its hand, from the events search path (rig/paths.py), checked against the object
 recorded on. They read the whole Scenario, so they live with it; the controller itself takes
 the events given."""
 
+from typing import Annotated
+
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.rig.typed_yaml import YamlSyntaxError, parse_yaml
 from tegrasp_drake.scenario.scenario import Scenario
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import SEARCHED_FOLDER, PathLike, public_api
 
 
 def _hand_folder(scenario) -> str:
@@ -17,7 +19,8 @@ def _hand_folder(scenario) -> str:
 
 
 @public_api
-def load_controller_events(scenario: Scenario, events_dir: PathLike | None = None, *,
+def load_controller_events(scenario: Scenario,
+                           events_dir: Annotated[PathLike | None, SEARCHED_FOLDER] = None, *,
                            nominal_object: ObjectConfig | None = None) -> dict:
     """The memorized events of the scenario's object for its controller, from `events_dir` or else
     the user's events folder or the package's. MemorizedEventError (naming the folders, the file and
@@ -30,7 +33,8 @@ def load_controller_events(scenario: Scenario, events_dir: PathLike | None = Non
 
 
 @public_api
-def load_corrective_events(scenario: Scenario, events_dir: PathLike | None = None, *,
+def load_corrective_events(scenario: Scenario,
+                           events_dir: Annotated[PathLike | None, SEARCHED_FOLDER] = None, *,
                            nominal_object: ObjectConfig | None = None) -> dict:
     """The corrective events (lift_load, hold_avoid) of the scenario's object from the search path's
     CORRECTIVE_EVENTS_FOLDER, checked against the object as load_controller_events checks."""

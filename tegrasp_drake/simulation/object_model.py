@@ -1,6 +1,7 @@
 """Adds the scenario's object to a plant: a primitive shape written as SDF, or a model file.
 Primitive objects are rigid hydroelastic bodies with frame O at the centre of the base face,
-z up, and the inertia of a uniform solid."""
+z up, and the inertia of a uniform solid; a model file's body keeps its geometry and mass
+distribution and takes the scenario's mass and friction."""
 
 import itertools
 
@@ -75,6 +76,59 @@ def _corner_hull_collision(plant, instance, config: ObjectConfig) -> None:
         Convex(corners * half[:, None], "box_corner_hull"), "collision", properties)
 
 
+def _added_model_file_body(parser, config: ObjectConfig) -> ModelInstanceIndex:
+    """The model file's one body added to the parser's plant with the scenario's mass and
+    friction, as a primitive's are: the file is parsed into a plant of its own, and its body
+    made again in this one (a parsed body's mass cannot be changed before Finalize, only in
+    a context) with its spatial inertia scaled to object.mass (the same centre of mass and
+    mass distribution: its density scaled), its geometries at their poses with their
+    properties, each collision geometry's Coulomb friction object.friction (static =
+    dynamic). So the trial simulates the object its events, records and randomised mass and
+    friction describe. A file that is not one model of one free body is refused."""
+    from pydrake.geometry import GeometryInstance, IllustrationProperties, PerceptionProperties
+    from pydrake.multibody.plant import AddMultibodyPlantSceneGraph
+    from pydrake.multibody.parsing import Parser
+    from pydrake.multibody.tree import SpatialInertia
+    from pydrake.systems.framework import DiagramBuilder
+    scratch, scratch_graph = AddMultibodyPlantSceneGraph(DiagramBuilder(), time_step=0.0)
+    scratch_parser = Parser(scratch)
+    scratch_parser.package_map().AddMap(parser.package_map())
+    instances = _added_model_file(scratch_parser, config.file)
+    problem = (one_body_problem(scratch, instances) or joints_problem(scratch, instances[0]))
+    if problem:
+        raise UserPathError(f"field 'object.file': '{config.file}' {problem}")
+    source = object_body(scratch, instances[0])
+    inertia = source.default_spatial_inertia()
+    plant = parser.plant()
+    instance = plant.AddModelInstance(scratch.GetModelInstanceName(instances[0]))
+    body = plant.AddRigidBody(source.name(), instance, SpatialInertia(
+        config.mass, inertia.get_com(), inertia.get_unit_inertia()))
+    inspector = scratch_graph.model_inspector()
+    for geometry in scratch.GetCollisionGeometriesForBody(source):
+        properties = ProximityProperties(inspector.GetProximityProperties(geometry))
+        friction = CoulombFriction(config.friction, config.friction)
+        if properties.HasProperty("material", "coulomb_friction"):
+            properties.UpdateProperty("material", "coulomb_friction", friction)
+        else:
+            properties.AddProperty("material", "coulomb_friction", friction)
+        plant.RegisterCollisionGeometry(body, inspector.GetPoseInFrame(geometry),
+                                        inspector.GetShape(geometry),
+                                        inspector.GetName(geometry).split("::")[-1],
+                                        properties)
+    for geometry in scratch.GetVisualGeometriesForBody(source):
+        visual = GeometryInstance(inspector.GetPoseInFrame(geometry),
+                                  inspector.GetShape(geometry),
+                                  inspector.GetName(geometry).split("::")[-1])
+        illustration = inspector.GetIllustrationProperties(geometry)
+        perception = inspector.GetPerceptionProperties(geometry)
+        if illustration is not None:
+            visual.set_illustration_properties(IllustrationProperties(illustration))
+        if perception is not None:
+            visual.set_perception_properties(PerceptionProperties(perception))
+        plant.RegisterVisualGeometry(body, visual)
+    return instance
+
+
 def _added_model_file(parser, file: str) -> list[ModelInstanceIndex]:
     """The model instances of the model file `file` (a path or package:// URL); UserPathError
     (one line, naming object.file, which the command line reports as a user's file) when
@@ -95,17 +149,10 @@ def AddObject(parser, config: ObjectConfig,
     geometry = geometry or ContactGeometryConfig()
     corner_hull = config.shape == "box" and geometry.box_triangles == 12
     if config.shape == "file":
-        instances = _added_model_file(parser, config.file)
+        instances = [_added_model_file_body(parser, config)]
     else:
         instances = parser.AddModelsFromString(object_sdf(config, collision=not corner_hull),
                                                "sdf")
-    if config.shape == "file":  # a primitive's SDF is one model of one free body
-        # The scenario's check (rig/object_file.py) refused these already, in these words;
-        # here: a file changed since, or an object config that never went through it.
-        problem = (one_body_problem(parser.plant(), instances)
-                   or joints_problem(parser.plant(), instances[0]))
-        if problem:
-            raise UserPathError(f"field 'object.file': '{config.file}' {problem}")
     if corner_hull:
         _corner_hull_collision(parser.plant(), instances[0], config)
     return instances[0]

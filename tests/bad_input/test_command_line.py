@@ -378,3 +378,27 @@ def test_a_runner_option_refused_is_bad_input_as_for_every_command(tmp_path, cap
                                 workers, "--no-progress", *FAKE_TRIALS], capfd)
         assert status == code, text
         assert len(text.strip().splitlines()) == 1, text
+
+
+# Rule: a command line that does not parse is one line on stderr naming the (sub)command and
+# the argument, pointing to its --help, with argparse's exit code 2 (docs/user-guide.md,
+# "Exit codes"); never the usage block.
+@pytest.mark.parametrize("argv, words", [
+    (["sweep", "--base-seed", "1e3"],
+     "tegrasp sweep: error: argument --base-seed: '1e3' is not an integer "
+     "(see tegrasp sweep --help)"),
+    (["hardware", "--duration", "0"], "tegrasp hardware: error: argument --duration:"),
+    (["record-events", "--controller", "open_loop"],
+     "tegrasp record-events: error: unrecognized arguments: --controller open_loop "
+     "(see tegrasp record-events --help)"),
+    (["no-such-command"], "tegrasp: error: argument command: invalid choice"),
+])
+def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv, words, capfd):
+    try:
+        code = cli.main(argv)
+    except SystemExit as exit_:
+        code = exit_.code
+    captured = capfd.readouterr()
+    assert code == 2 and captured.out == "", captured
+    assert captured.err.count("\n") == 1 and "usage:" not in captured.err, captured.err
+    assert captured.err.startswith(words), captured.err

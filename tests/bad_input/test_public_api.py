@@ -315,3 +315,23 @@ def test_a_numpy_array_in_a_list_field_is_refused_naming_it(field, value):
     with pytest.raises(TypeError, match=f"SweepSpec: field '{field}' must be a list or tuple, "
                                         f"got numpy.ndarray; give {field}={field}.tolist()"):
         SweepSpec(**{field: value})
+
+
+# Rule: a wrong name or folder given to a public function is named with the function and
+# the argument, as the command line names its option.
+def test_an_unknown_controller_name_names_with_controller_and_its_argument():
+    scenario = T.LoadScenario(name="box")
+    with pytest.raises(ValueError, match="with_controller: argument 'name' must be one of "
+                                         "'memorized', .* got 'nosuch'"):
+        T.with_controller(scenario, "nosuch")
+
+
+@pytest.mark.parametrize("name", ["load_controller_events", "load_corrective_events"])
+def test_an_events_folder_that_is_a_file_is_named_as_a_file(tmp_path, name):
+    from tegrasp_drake.rig.files import UserPathError
+    scenario = T.LoadScenario(name="box")
+    file = tmp_path / "events.json"
+    file.write_text("{}")
+    with pytest.raises(UserPathError, match=f"{name}: argument 'events_dir': .* is a file, "
+                                            "not a folder"):
+        getattr(T, name)(scenario, events_dir=file)

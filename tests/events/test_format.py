@@ -2,6 +2,7 @@
 
 import dataclasses
 import json
+import pathlib
 import re
 import shlex
 
@@ -241,3 +242,17 @@ def test_a_version_1_file_that_does_not_describe_its_object_is_refused(tmp_path)
     with pytest.raises(MemorizedEventError, match="format_version 1 file whose scenario text "
                                                    "does not describe the object"):
         read_memorized_event(path)
+
+
+def test_the_format_page_states_the_version_record_events_writes():
+    """FORMAT.md's title, its field tables and its Versions section name the version the
+    code writes (FORMAT_VERSION), and no other as the one written."""
+    from tegrasp_drake.events.event_file import FORMAT_VERSION
+    import tegrasp_drake.events
+    page = (pathlib.Path(tegrasp_drake.events.__file__).parent / "FORMAT.md").read_text(
+        encoding="utf-8")
+    assert page.splitlines()[0].endswith(f"version {FORMAT_VERSION}")
+    written = re.findall(r"record-events` writes version (\d+)", page)
+    assert written == [str(FORMAT_VERSION)], written
+    listed = re.findall(r"^- (\d+)[: ]", page.split("## Versions", 1)[1], flags=re.M)
+    assert listed and int(listed[0]) == FORMAT_VERSION, listed

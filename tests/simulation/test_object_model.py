@@ -99,3 +99,47 @@ def test_a_model_with_two_bodies_is_refused(tmp_path):
     config = _file_object(tmp_path, '<?xml version="1.0"?><sdf version="1.9"><model name="a">'
                           f'{LINK.format("one")}{LINK.format("two")}</model></sdf>')
     assert "it holds 1 model(s) with bodies ['one', 'two']" in _refused_at_build(config)
+
+
+# A model file's body takes the scenario's mass and friction, as a primitive's does: the
+# trial simulates the object its events, records and randomised mass describe.
+FILE_BOX = ('<?xml version="1.0"?><sdf version="1.9"><model name="mine"><link name="body">'
+            '<inertial><pose>0 0 0.05 0 0 0</pose><mass>0.15</mass><inertia><ixx>1.4e-4</ixx>'
+            '<iyy>1.5e-4</iyy><izz>4e-5</izz><ixy>0</ixy><ixz>0</ixz><iyz>0</iyz></inertia>'
+            '</inertial><collision name="c"><pose>0 0 0.05 0 0 0</pose>'
+            f'{"<geometry><box><size>0.04 0.04 0.1</size></box></geometry>"}'
+            '<drake:proximity_properties><drake:rigid_hydroelastic/><drake:mu_dynamic>0.9'
+            '</drake:mu_dynamic><drake:mu_static>0.9</drake:mu_static>'
+            '</drake:proximity_properties></collision><visual name="v">'
+            '<pose>0 0 0.05 0 0 0</pose><geometry><box><size>0.04 0.04 0.1</size></box>'
+            '</geometry></visual></link></model></sdf>')
+
+
+def test_a_model_files_body_takes_the_scenarios_mass_with_the_files_distribution(tmp_path):
+    import dataclasses
+    config = dataclasses.replace(_file_object(tmp_path, FILE_BOX), mass=0.3)
+    plant, _, instance = _added(config)
+    M_BBo = object_body(plant, instance).default_spatial_inertia()
+    assert M_BBo.get_mass() == pytest.approx(0.3, rel=1e-12)
+    np.testing.assert_allclose(M_BBo.get_com(), [0.0, 0.0, 0.05], rtol=0, atol=1e-12)
+    I_BBcm = M_BBo.Shift(M_BBo.get_com()).CalcRotationalInertia().CopyToFullMatrix3()
+    # the file's inertia about its centre of mass, scaled by 0.3 / 0.15
+    np.testing.assert_allclose(I_BBcm, 2.0 * np.diag([1.4e-4, 1.5e-4, 4e-5]), rtol=1e-9)
+
+
+def test_a_model_files_collision_takes_the_scenarios_friction_and_keeps_its_shape(tmp_path):
+    import dataclasses
+    config = dataclasses.replace(_file_object(tmp_path, FILE_BOX), friction=0.01)
+    plant, scene_graph, instance = _added(config)
+    body = object_body(plant, instance)
+    (geometry,) = plant.GetCollisionGeometriesForBody(body)
+    inspector = scene_graph.model_inspector()
+    assert isinstance(inspector.GetShape(geometry), Box)
+    np.testing.assert_allclose(inspector.GetPoseInFrame(geometry).translation(),
+                               [0.0, 0.0, 0.05], rtol=0, atol=1e-12)
+    properties = inspector.GetProximityProperties(geometry)
+    assert properties.HasProperty("hydroelastic", "compliance_type")
+    friction = properties.GetProperty("material", "coulomb_friction")
+    assert (friction.static_friction(), friction.dynamic_friction()) == (0.01, 0.01)
+    assert len(plant.GetVisualGeometriesForBody(body)) == 1
+    assert plant.GetModelInstanceName(instance) == "mine" and body.name() == "body"

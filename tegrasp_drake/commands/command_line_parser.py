@@ -1,0 +1,46 @@
+"""The command line's argument parser: one for `tegrasp` and each of its subcommands (and
+the standalone `python -m tegrasp_drake.commands.sweep`), so that each refuses a command
+line that does not parse alike, in one line (docs/user-guide.md, "Exit codes")."""
+
+import argparse
+
+from tegrasp_drake.commands import error_boundary
+
+
+class CommandLineParser(argparse.ArgumentParser):
+    """argparse's parser (the `tegrasp` command's and, by add_subparsers, each
+    subcommand's), ending a command line that does not parse with one line on stderr,
+    `tegrasp sweep: error: <what> (see tegrasp sweep --help)`, the user's text quoted
+    safely (rig/files.error_line), and EXIT_USAGE; argparse's own error prints the usage
+    block first, many lines."""
+
+    def error(self, message):
+        from tegrasp_drake.rig.files import error_line
+        self.exit(error_boundary.EXIT_USAGE,
+                  f"{self.prog}: error: {error_line(message)} (see {self.prog} --help)\n")
+
+    def parse_args(self, args=None, namespace=None):
+        """argparse's parse_args, an argument no parser knows refused by the subcommand's
+        parser (`tegrasp record-events: error: unrecognized arguments: ...`), not the top's."""
+        parsed, extras = self.parse_known_args(args, namespace)
+        if extras:
+            subparsers = [a for a in self._actions
+                          if isinstance(a, argparse._SubParsersAction)]
+            command = (subparsers[0].choices.get(getattr(parsed, subparsers[0].dest, None))
+                       if subparsers else None)
+            (command or self).error(f"unrecognized arguments: {' '.join(extras)}")
+        return parsed
+
+    def parse_known_args(self, args=None, namespace=None):
+        """A command with an optional positional (`plot signals -v LOG`) takes it after its
+        options too: argparse alone fills an optional positional with its default when an
+        option comes first, and then refuses the positional as an unrecognized argument."""
+        optional_positional = any(not action.option_strings and action.nargs in ("?", "*")
+                                  for action in self._actions)
+        if not optional_positional or getattr(self, "_intermixing", False):
+            return super().parse_known_args(args, namespace)
+        self._intermixing = True  # parse_known_intermixed_args calls parse_known_args
+        try:
+            return self.parse_known_intermixed_args(args, namespace)
+        finally:
+            self._intermixing = False

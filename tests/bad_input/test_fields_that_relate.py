@@ -1,0 +1,59 @@
+"""Settings each within its own range that contradict another setting are refused at load,
+in one line naming both: a Lift-Load cap below the grip it raises, and a scripted or
+corrective move faster than the arm can follow."""
+
+import pytest
+
+import tegrasp_drake as T
+from tests.bad_input.probes import refusal
+
+
+@pytest.mark.parametrize("overrides", [
+    ["grasp.grip_force=200", "controller.lift_load.max_grip_force_n=50"],
+    ["controller.lift_load.max_grip_force_n=20"],  # below the 25 N default grip
+])
+def test_a_lift_load_cap_below_the_grip_is_refused_naming_both_fields(overrides):
+    refusal(lambda: T.LoadScenario(name="box", overrides=overrides),
+            "'controller.lift_load.max_grip_force_n'", "grasp.grip_force", "loosen")
+
+
+def test_a_lift_load_cap_of_zero_is_out_of_the_grippers_range():
+    refusal(lambda: T.LoadScenario(name="box",
+                                   overrides=["controller.lift_load.max_grip_force_n=0"]),
+            "'controller.lift_load.max_grip_force_n'", "[20, 235]")
+
+
+def test_a_lift_load_cap_equal_to_the_grip_loads():
+    scenario = T.LoadScenario(name="box", overrides=["grasp.grip_force=100",
+                                                     "controller.lift_load.max_grip_force_n=100"])
+    assert scenario.controller.lift_load.max_grip_force_n == 100
+
+
+@pytest.mark.parametrize("overrides, field", [
+    (["grasp.reach_s=0.001"], "grasp.reach_s"),
+    (["grasp.lift_s=0.02", "grasp.lift_height=0.3"], "grasp.lift_s"),
+    (["grasp.place_s=0.001"], "grasp.place_s"),
+    (["controller.avoid.move_s=0.01"], "controller.avoid.move_s"),
+    (["controller.re_reach.move_s=0.001"], "controller.re_reach.move_s"),
+])
+def test_a_move_faster_than_the_arm_can_follow_is_refused_naming_its_duration(overrides,
+                                                                               field):
+    refusal(lambda: T.LoadScenario(name="box", controller="memorized", overrides=overrides),
+            f"'{field}' is too short to move the hand", "m/s", "give it at least")
+
+
+def test_the_shortest_duration_a_refusal_gives_is_accepted():
+    """The refusal's "give it at least T s" is a duration that loads: its bound is the
+    same one the check applies."""
+    import re
+    message = refusal(lambda: T.LoadScenario(name="box", overrides=["grasp.reach_s=0.001"]),
+                      "'grasp.reach_s'")
+    shortest = re.search(r"give it at least ([0-9.]+) s", message).group(1)
+    assert T.LoadScenario(name="box", overrides=[f"grasp.reach_s={shortest}"])
+
+
+def test_a_zero_length_move_may_take_no_time():
+    scenario = T.LoadScenario(name="box", controller="memorized",
+                              overrides=["controller.avoid.distance_m=0",
+                                         "controller.avoid.move_s=0"])
+    assert scenario.controller.avoid.move_s == 0
