@@ -263,14 +263,9 @@ def _other_runs(tmp_path):
 TRANSFER_SPEC = "worlds: {a: {scenario: memorizing_world}}\ncells: [[a, a]]\n"
 
 
-@pytest.mark.parametrize("command, into", [
-    ("transfer", "trial"), ("transfer", "sweep"), ("transfer", "sensitivity"),
-    ("sweep", "trial"), ("sweep", "transfer"), ("sensitivity", "trial"),
-    ("sensitivity", "sweep"), ("trial", "sweep"), ("trial", "transfer")])
-def test_a_run_into_a_folder_holding_another_commands_run_is_refused(command, into, tmp_path,
-                                                                     capsys):
-    folder = _other_runs(tmp_path)[into]
-    before = sorted(path.name for path in folder.iterdir())
+def _run_into(command, folder, tmp_path, capsys) -> tuple[int, list[str]]:
+    """(exit code, stderr lines) of `tegrasp COMMAND ... --out FOLDER` (a sweep of fake
+    trials; transfer and sensitivity of a one-cell spec)."""
     spec = tmp_path / "spec.yaml"
     spec.write_text(TRANSFER_SPEC if command == "transfer" else
                     "parameters: [object.friction]\nsweep: {objects: [box], attempts: 1}\n")
@@ -280,9 +275,20 @@ def test_a_run_into_a_folder_holding_another_commands_run_is_refused(command, in
                  "trial": []}[command]
     try:
         code = cli.main([command, *arguments, "--out", str(folder)])
-        lines = capsys.readouterr().err.strip().splitlines()
+        return code, capsys.readouterr().err.strip().splitlines()
     except SystemExit as exit_:  # trial's refusals end the process with their line
-        code, lines = 1, [str(exit_.code)]
+        return 1, [str(exit_.code)]
+
+
+@pytest.mark.parametrize("command, into", [
+    ("transfer", "trial"), ("transfer", "sweep"), ("transfer", "sensitivity"),
+    ("sweep", "trial"), ("sweep", "transfer"), ("sensitivity", "trial"),
+    ("sensitivity", "sweep"), ("trial", "sweep"), ("trial", "transfer")])
+def test_a_run_into_a_folder_holding_another_commands_run_is_refused(command, into, tmp_path,
+                                                                     capsys):
+    folder = _other_runs(tmp_path)[into]
+    before = sorted(path.name for path in folder.iterdir())
+    code, lines = _run_into(command, folder, tmp_path, capsys)
     assert code == 1
     assert len(lines) == 1 and f"holds a `tegrasp {into}` run" in lines[0], lines
     assert sorted(path.name for path in folder.iterdir()) == before
@@ -293,18 +299,7 @@ def test_a_run_into_an_events_folder_is_refused(command, tmp_path, capsys):
     events = tmp_path / "events"
     events.mkdir()
     (events / "index.json").write_text("{}")
-    spec = tmp_path / "spec.yaml"
-    spec.write_text(TRANSFER_SPEC if command == "transfer" else
-                    "parameters: [object.friction]\nsweep: {objects: [box], attempts: 1}\n")
-    arguments = {"transfer": [str(spec)], "sensitivity": [str(spec)],
-                 "sweep": ["--objects", "box", "--attempts", "1", "--trial-function",
-                           "tests.fake_trials:fake_trial", "--no-progress"],
-                 "trial": []}[command]
-    try:
-        code = cli.main([command, *arguments, "--out", str(events)])
-        lines = capsys.readouterr().err.strip().splitlines()
-    except SystemExit as exit_:
-        code, lines = 1, [str(exit_.code)]
+    code, lines = _run_into(command, events, tmp_path, capsys)
     assert code == 1
     assert len(lines) == 1 and "holds memorized events (index.json)" in lines[0], lines
     assert sorted(path.name for path in events.iterdir()) == ["index.json"]
