@@ -14,6 +14,11 @@ def minimum_jerk(tau):
     return tau ** 3 * (10.0 + tau * (-15.0 + 6.0 * tau))
 
 
+# minimum_jerk's peak slope, ds/dtau = 15/8 at tau = 1/2: a move of d metres over T seconds
+# asks at most 15/8 d / T of the hand.
+MINIMUM_JERK_PEAK_SPEED = 15.0 / 8.0
+
+
 def interpolate_pose(X_start: RigidTransform, X_end: RigidTransform, s: float) -> RigidTransform:
     """The pose a fraction s of the way from X_start to X_end (straight line, slerp)."""
     q0 = X_start.rotation().ToQuaternion()

@@ -45,29 +45,24 @@ def logged_hit_rule(log) -> HitRule | None:
 
 
 def hit_trigger_lines(t_ra, ra, hold_spans, rule: HitRule):
-    """Each film's hit trigger in Hold, reconstructed from the log as the controller computes
-    it: (t [s] of the Hold's controller ticks, (n, films) level + threshold [m/s^2]). A tick
-    reads the film's latest RA sample (t_ra [s], ra (samples, films) [m/s^2]); hold_spans:
-    (start, end) [s] of each Hold. The level restarts with each Hold, as the controller's does;
-    a tick with no earlier tick in its Hold has level 0."""
+    """Each film's hit trigger in Hold, reconstructed from the log by the controller's own
+    level (corrective_actions.ra_history, ra_level): (t [s] of the Hold's controller ticks,
+    (n, films) level + threshold [m/s^2]). A tick reads the film's latest RA sample (t_ra
+    [s], ra (samples, films) [m/s^2]); hold_spans: (start, end) [s] of each Hold, the first
+    tick in it the one after the transition's. The level restarts with each Hold."""
+    from tegrasp_drake.control.corrective_actions import ra_history, ra_level
     t_ra, ra = np.asarray(t_ra, float), np.asarray(ra, float)
-    keep = round(rule.level_s / rule.period_s) if rule.level_s > 0.0 else 0
     times, lines = [], []
     for start, end in hold_spans:
-        # the first tick in Hold is the one after the transition's
         count = int(np.floor((end - start) / rule.period_s))
         ticks = start + rule.period_s * np.arange(1, count + 1)
-        read = ra[np.clip(np.searchsorted(t_ra, ticks, side="right") - 1, 0, len(t_ra) - 1)]
-        level = np.zeros_like(read)
-        if keep > 0:
-            sums = np.vstack([np.zeros((1, read.shape[1])), np.cumsum(read, axis=0)])
-            k = np.arange(len(ticks))
-            first = np.maximum(k - keep, 0)
-            counts = np.maximum(k - first, 1)[:, None]
-            level = np.where((k > 0)[:, None], (sums[k] - sums[first]) / counts, 0.0)
+        reads = ra[np.clip(np.searchsorted(t_ra, ticks, side="right") - 1, 0, len(t_ra) - 1)]
+        history = ()
+        for read in reads:
+            lines.append(np.asarray(ra_level(history, ra.shape[1])) + rule.threshold_mps2)
+            history = ra_history(history, read, rule.level_s, rule.period_s)
         times.append(ticks)
-        lines.append(level + rule.threshold_mps2)
-    if not times:
+    if not lines:
         return np.zeros(0), np.zeros((0, ra.shape[1]))
     return np.concatenate(times), np.vstack(lines)
 

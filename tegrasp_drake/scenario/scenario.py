@@ -231,12 +231,6 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
                 "no hit)", disturbance.hit_time_s)
 
 
-# Every arm move, scripted or corrective, follows a minimum-jerk profile
-# (control/motion_profiles.py): s = 10 tau^3 - 15 tau^4 + 6 tau^5 peaks at ds/dtau = 15/8 at
-# mid-move, so a move of d metres over T seconds asks 15/8 d / T of the hand.
-MINIMUM_JERK_PEAK_SPEED = 15.0 / 8.0
-
-
 def _hand_moves(scenario: Scenario):
     """(duration field, distance [m], duration [s], what moves) of each arm move the trial
     may ask: each phase of the grasp script, and the closed-loop controller's own moves
@@ -265,7 +259,10 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
     """Each arm move's peak speed against the most the arm can follow
     (cartesian_arm_controller.max_hand_speed_mps): a faster one leaves the differential IK
     behind ("stuck") and the trial would not do what its script says."""
+    # every arm move, scripted or corrective, follows the minimum-jerk profile
     from tegrasp_drake.control.cartesian_arm_controller import max_hand_speed_mps
+    from tegrasp_drake.control.motion_profiles import MINIMUM_JERK_PEAK_SPEED
+    from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_REACH_M
     limit = max_hand_speed_mps()
     for field, distance, duration, what in _hand_moves(scenario):
         peak_distance = MINIMUM_JERK_PEAK_SPEED * distance
@@ -274,7 +271,7 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
                     f"is too short to move the hand {distance * 1000:.0f} mm ({what}): its "
                     f"minimum-jerk move peaks at {peak_distance / duration:.3g} m/s, "
                     f"more than the JACO2's hand can move ({limit:.2f} m/s: its joints' "
-                    f"speed limits times its 0.9 m reach); give it at least "
+                    f"speed limits times its {JACO2_REACH_M:g} m reach); give it at least "
                     f"{math.ceil(peak_distance / limit * 1000) / 1000:g} s", duration)
 
 
