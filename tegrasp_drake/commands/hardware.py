@@ -265,8 +265,6 @@ def run(args) -> int:
                                 result_path)
 
 
-# The entries every hardware run's result.json holds (HardwareRunResult.as_dict).
-HARDWARE_RESULT_KEYS = ("transitions", "faults", "log", "device_counters")
 HARDWARE_RESULT_MAX_BYTES = 16 * 1024 * 1024  # a run's result: its transitions and counters
 
 
@@ -277,6 +275,7 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
     notes saved under a run's name are not replaced. Only the log's head is read."""
     from tegrasp_drake.rig.files import JsonFileError, read_json_file
     from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
+    from tegrasp_drake.runs.hardware_run import HARDWARE_RESULT_KEYS
     remedy = "give another --log, or remove it yourself"
     if is_log:
         try:

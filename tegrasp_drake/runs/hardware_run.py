@@ -291,6 +291,11 @@ class RunReporter:
         return EventStatus.Succeeded()
 
 
+# The entries every run's result.json holds (HardwareRunResult.as_dict), by which a file is
+# known as one (commands/hardware.earlier_run_file_problem).
+HARDWARE_RESULT_KEYS = ("transitions", "faults", "log", "device_counters")
+
+
 @dataclasses.dataclass
 class HardwareRunResult:
     transitions: list          # [{t, from, to, trigger, ...}]: Transition.as_dict()
