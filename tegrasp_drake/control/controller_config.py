@@ -49,7 +49,8 @@ class FingerStrikeConfig:
     # force on G over its approach-start value [N]: 2.5x the Reach's 0.81 N, half a strike's 3.9
     force_n: float = bounded(2.0, low=0.0, low_open=True, high=100.0, unit="N",
                              below="must be positive [N]")
-    # for this long [s]: no single spike, still far inside the 0.13 s before the object moves
+    # the wrist force for this long [s]: no single spike, still far inside the 0.13 s before
+    # the object moves (a film's onset acts at once: docs/controller.md, "Finger strike")
     sustain_s: float = bounded(0.01, low=0.0, high=1.0, unit="s",
                                below="must be zero or positive [s]")
     # the summed side moment [N m] (left: +) tells the finger above half the smallest strike's

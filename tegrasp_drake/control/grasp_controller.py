@@ -24,6 +24,7 @@ from tegrasp_drake.control.scripted_grasp import (PHASES, ScriptedGraspSource, S
                                                   plan_scripted_grasp)
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.tactile.mechanoreceptor_channels import AddMechanoreceptorChannels
+from tegrasp_drake.tactile.ra_tick_peak import AddRaTickPeak
 from tegrasp_drake.tactile.sample_block import block_samples
 from tegrasp_drake.tactile.slip_vibration_band import AddSlipVibrationBand
 from tegrasp_drake.simulation.station import ArmDriverConfig
@@ -269,6 +270,11 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
         builder.Connect(station.GetOutputPort(ports.ARM_TORQUE_MEASURED),
                         wrench.GetInputPort(ports.ARM_TORQUE_MEASURED))
         builder.Connect(wrench.GetOutputPort("wrench"), machine.GetInputPort("grasp_wrench"))
+    if entry.senses_finger_strike:
+        builder.Connect(AddRaTickPeak(builder, channels.GetOutputPort("ra"),
+                                      sample_rate_hz=sample_rates_hz[1],
+                                      tick_s=config.update_period_s),
+                        machine.GetInputPort("ra_peak"))
     builder.Connect(machine.GetOutputPort("X_WG_desired"), X_WG_desired)
     builder.Connect(machine.GetOutputPort("gripper_command"),
                     station.GetInputPort(ports.GRIPPER_COMMAND))

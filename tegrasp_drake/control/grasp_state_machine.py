@@ -57,6 +57,7 @@ class GraspStateMachine(LeafSystem):
         - taxel_forces (optional)
         - corrective_match (optional)
         - grasp_wrench (optional)
+        - ra_peak (optional)
         output_ports:
         - X_WG_desired
         - gripper_command
@@ -69,10 +70,12 @@ class GraspStateMachine(LeafSystem):
     2F-85 bytes; pad_acceleration: [left xyz, right xyz] [m/s^2, pad frames] (unconnected:
     Avoid moves up); slip_vibration: [left, right] slip band [m/s^2]; device_fault: "" or
     the watchdog's message; taxel_forces: [left 12, right 12] [N] (taxel_aware);
-    grasp_wrench: [M, F] at G [N m, N, world] (finger strike). Outputs: X_WG_desired;
-    gripper_command [rPR, rSP, rFR]; expected_event and corrective_expected_event (index,
-    -1 none; state only, since the matchers feed back); mode. rules: the RuleTable, run as
-    kept to the plan's hand (RuleTable.for_hand(plan.gripper_model), rule_table());
+    grasp_wrench: [M, F] at G [N m, N, world] (finger strike); ra_peak: each film's peak |RA|
+    over the tick [m/s^2] (tactile/ra_tick_peak.py; unconnected: the tick's RA). Outputs:
+    X_WG_desired; gripper_command [rPR, rSP, rFR]; expected_event and
+    corrective_expected_event (index, -1 none; state only, since the matchers feed back);
+    mode. rules: the RuleTable, run as kept to the plan's hand
+    (RuleTable.for_hand(plan.gripper_model), rule_table());
     estimator: a taxel_aware ContactEstimator or None (both from the registry entry).
     """
 
@@ -106,6 +109,7 @@ class GraspStateMachine(LeafSystem):
         self._taxel_forces = self.DeclareVectorInputPort("taxel_forces", 2 * TAXELS_PER_PAD)
         self._corrective_match = self.DeclareVectorInputPort("corrective_match", 1)
         self._grasp_wrench = self.DeclareVectorInputPort("grasp_wrench", 6)
+        self._ra_peak = self.DeclareVectorInputPort("ra_peak", 2)
         self._estimator = estimator
         self._rules = rules.for_hand(plan.gripper_model)
         self._state = self.DeclareAbstractState(AbstractValue.Make(self.initial_state()))
@@ -283,7 +287,9 @@ class GraspStateMachine(LeafSystem):
                 == ru.ObjectStatus.STOPPED_ON_CONTACT_CLOSING,
                 wrench=self._approach_wrench(s, context),
                 gripper_y_m=s.segment.position(t)[1], event_matched=event_matched,
-                ra_mps2=tuple(channels[2:4])))
+                ra_mps2=tuple(channels[2:4]),
+                ra_peak_mps2=(tuple(self._ra_peak.Eval(context))
+                              if self._ra_peak.HasValue(context) else None)))
             s = dataclasses.replace(s, contact=memory)
         observation = Observation(
             time_in_mode=time_in_mode, event_matched=event_matched,

@@ -8,7 +8,8 @@
   sample_block.py              fast samples kept in C++ and read once per block
   read_batch.py                a tick's fast samples read in one update before the tick
   slip_vibration_band.py       the pads' vibration in the slip band, for Lift-Load
-  slip_band_diagram.py         the per-tick slip band as compiled Drake systems"""
+  slip_band_diagram.py         the per-tick slip band as compiled Drake systems
+  ra_tick_peak.py              each film's peak |RA| over a controller tick, compiled"""
 
 from tegrasp_drake.tactile.mechanoreceptor_channels import MakeMechanoreceptorChannels
 from tegrasp_drake.tactile.sampling import rate_groups, resample_window, samples_per_window

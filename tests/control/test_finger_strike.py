@@ -7,8 +7,8 @@ from pydrake.multibody.tree import JacobianWrtVariable
 
 from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.finger_strike import (
-    grasp_wrench_from_torques, side_moment_nm, strike_force_n,
-    strike_shift, struck_finger)
+    FINGER_FRONT_M, grasp_wrench_from_torques, pad_touch_shift, side_moment_nm,
+    strike_force_n, strike_shift, struck_finger)
 from tegrasp_drake.rig.arm_kinematics import IK_SEED, make_arm_control_plant
 
 CONFIG = TaxelAwareControllerConfig()
@@ -64,11 +64,39 @@ def test_a_touching_pad_names_the_finger_and_a_small_moment_names_none():
     assert struck_finger(0.5 * STRIKE.min_moment_nm, (True, True), STRIKE) is None
 
 
-def test_the_shift_moves_toward_the_struck_finger_by_the_half_gap():
-    assert strike_shift("left", OPEN_M, BOX_WIDTH_M) == pytest.approx(0.02)
-    assert strike_shift("right", OPEN_M, BOX_WIDTH_M) == pytest.approx(-0.02)
+def test_the_shift_moves_toward_the_struck_finger_by_the_half_gap_and_the_front():
+    assert FINGER_FRONT_M == pytest.approx(0.014)  # pad 4 mm, backing 10 mm
+    assert strike_shift("left", OPEN_M, BOX_WIDTH_M) == pytest.approx(0.027)
+    assert strike_shift("right", OPEN_M, BOX_WIDTH_M) == pytest.approx(-0.027)
     assert strike_shift(None, OPEN_M, BOX_WIDTH_M) == 0.0
     assert strike_shift("left", 0.03, BOX_WIDTH_M) == 0.0  # never away
+
+
+@pytest.mark.parametrize("width_m", [0.045, 0.060])
+def test_after_the_shift_both_pads_clear_wherever_the_front_met_the_face(width_m):
+    """The struck (left) side's face anywhere from the pad's face to the front's back: both
+    pads clear it by (opening - width - front) / 2 at least; the wide light box 25 mm along
+    the stroke (face 55 mm out) was left no clearance by (opening - width) / 2."""
+    shift = strike_shift("left", OPEN_M, width_m)
+    for face in np.linspace(OPEN_M / 2, OPEN_M / 2 + FINGER_FRONT_M, 15):
+        struck_pad = OPEN_M / 2 + shift - face
+        other_pad = face - width_m + OPEN_M / 2 - shift
+        least = (OPEN_M - width_m - FINGER_FRONT_M) / 2
+        assert min(struck_pad, other_pad) >= least - 1e-12 and least > 0
+
+
+def test_the_wide_light_box_25_mm_along_the_stroke_is_cleared_by_the_struck_pad():
+    """Its face 25 + 60 / 2 = 55 mm out, behind the pad's 42.5 mm: (opening - width) / 2
+    put the struck pad on it; the shift with the front clears it by 7 mm."""
+    face_m = 0.025 + 0.060 / 2
+    assert OPEN_M / 2 + pad_touch_shift("left", OPEN_M, 0.060) - face_m == pytest.approx(0.0)
+    assert OPEN_M / 2 + strike_shift("left", OPEN_M, 0.060) - face_m == pytest.approx(0.007)
+
+
+def test_a_pad_touch_shifts_by_the_half_gap():
+    assert pad_touch_shift("left", OPEN_M, BOX_WIDTH_M) == pytest.approx(0.02)
+    assert pad_touch_shift("right", OPEN_M, BOX_WIDTH_M) == pytest.approx(-0.02)
+    assert pad_touch_shift(None, OPEN_M, BOX_WIDTH_M) == 0.0
 
 
 def test_the_settings_are_given_with_set_and_checked():

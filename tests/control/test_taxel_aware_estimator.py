@@ -111,6 +111,18 @@ def test_one_film_above_the_ra_onset_in_the_approach_is_a_strike_of_its_finger()
     assert left.strike_finger == "left" and left.strike_s == pytest.approx(0.01)
 
 
+def test_a_ring_between_the_ticks_reads_sample_strikes_by_its_peak():
+    """The wide light box's strike rang one film 6 ms: the tick's sample can miss it, the
+    tick's peak (ra_peak_mps2) does not, and the film strike is there at that tick."""
+    onset = TAXEL.ra_onset_mps2
+    _, estimate = FILM_ESTIMATOR.update(ContactMemory(), reading(
+        stage=Stage.MOVING, ra_mps2=(0.0, 0.0), ra_peak_mps2=(2.2 * onset, 0.0)))
+    assert estimate.strike_by_film and estimate.strike_finger == "left"
+    _, missed = FILM_ESTIMATOR.update(ContactMemory(), reading(
+        stage=Stage.MOVING, ra_mps2=(0.0, 0.0)))
+    assert not missed.strike_by_film
+
+
 def test_one_film_counts_without_a_wrist_force_sense():
     onset = TAXEL.ra_onset_mps2
     estimate = approach_with_films(FILM_ESTIMATOR, (2 * onset, 0.0), wrench=None)[-1]

@@ -60,7 +60,7 @@ SCENES = {
         and "regrasp" in r["corrective_actions"])),
     # The box 30 mm along the stroke: its face 52.5 mm out, past the open pad's 42.5 mm, in
     # the left finger's path. The strike, felt in the joint torques, backs the approach off
-    # and shifts it toward the left finger (+y) by (opening - width) / 2; with the strike
+    # and shifts it toward the left finger (+y) by (opening - width + front) / 2; with the strike
     # sense off the finger knocks the box over and the grasp closes on nothing.
     "finger_strike": (Scene("box", (0.0, 0.03), seed=605), Expect(
         (("Reach", "Re-Reach", "finger_strike"),), first=True,
@@ -77,9 +77,10 @@ SCENES = {
     # The box 15 mm farther than expected and 25 mm along the stroke: its far face 47.5 mm
     # out, past the open left pad's 42.5 mm, the finger's front meets its near face late in
     # the approach with under 1 N at the wrist, below finger_strike.force_n, while the left
-    # film alone rings above ra_onset_mps2. The film's strike backs off and shifts toward the
-    # left finger; without it (measured, dev seed 982) the finger pushed the box 36 mm, the
-    # close found nothing and closed_untouched searched 37 mm forward for it.
+    # film alone rings above ra_onset_mps2, read by the tick's peak at its first tick. The
+    # film's strike backs off and shifts toward the left finger; without it (measured, dev
+    # seed 982) the finger pushed the box 36 mm, the close found nothing and
+    # closed_untouched searched 37 mm forward for it.
     "finger_strike_light": (Scene("box", (0.015, 0.025), seed=982), Expect(
         (("Reach", "Re-Reach", "finger_strike"),), first=True,
         check=lambda found, r: found[0].offset_m > 0.01

@@ -11,6 +11,7 @@ import pytest
 from tegrasp_drake.control.controller_config import (MemorizedControllerConfig,
                                                      TaxelAwareControllerConfig)
 from tegrasp_drake.control.corrective_actions import Counters
+from tegrasp_drake.control.finger_strike import FINGER_FRONT_M
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import Failed, Regrasp, ReReach
 from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
@@ -222,20 +223,25 @@ def test_the_strike_backs_off_and_shifts_toward_the_struck_finger():
         strike_s=TAXEL.finger_strike.sustain_s, strike_finger="left", strike_force_n=6.3)))
     assert decision.reason == ("the left finger struck the object during the approach "
                                "(6.3 N at the wrist)")
-    assert decision.action == ReReach(Shift(-TAXEL.approach_retreat_m,
-                                            pytest.approx((0.080 - WIDTH_M) / 2)))
+    assert decision.action == ReReach(Shift(
+        -TAXEL.approach_retreat_m, pytest.approx((0.080 - WIDTH_M + FINGER_FRONT_M) / 2)))
 
 
-def test_one_films_strike_backs_off_toward_that_finger_once_sustained():
+def test_the_wrist_strike_waits_for_sustain_s():
     sustain_s = TAXEL.finger_strike.sustain_s
-    film = dict(strike_by_film=True, strike_finger="right", strike_force_n=0.1)
-    assert code(Mode.REACH, situation(estimate=dict(film, strike_s=0.5 * sustain_s))) != (
+    wrist = dict(strike_finger="left", strike_force_n=6.3)
+    assert code(Mode.REACH, situation(estimate=dict(wrist, strike_s=0.5 * sustain_s))) != (
         "finger_strike")
-    decision = decide(Mode.REACH, situation(estimate=dict(film, strike_s=sustain_s)))
+
+
+def test_one_films_strike_backs_off_toward_that_finger_at_once():
+    """A light strike's ring lasts 6 ms: the film's onset acts in its first tick."""
+    film = dict(strike_by_film=True, strike_finger="right", strike_force_n=0.1)
+    decision = decide(Mode.REACH, situation(estimate=dict(film, strike_s=0.0)))
     assert decision.reason == ("the right finger struck the object during the approach "
                                "(its film's RA, 0.1 N at the wrist)")
-    assert decision.action == ReReach(Shift(-TAXEL.approach_retreat_m,
-                                            pytest.approx(-(0.080 - WIDTH_M) / 2)))
+    assert decision.action == ReReach(Shift(
+        -TAXEL.approach_retreat_m, pytest.approx(-(0.080 - WIDTH_M + FINGER_FRONT_M) / 2)))
 
 
 def test_the_approach_contact_backs_off_with_the_papers_shift_along_the_stroke():

@@ -70,7 +70,8 @@ class ContactReading:
     """The tick's inputs [s, N, m; world]; wrench on G is None without a finger-strike sense;
     stopped_on_object: the 2F-85 reports its fingers stopped on an object while closing (gOBJ 2)
     for the close request in force; event_matched: the detector matches the mode's event;
-    ra_mps2: the films' RA readings (left, right) [m/s^2]."""
+    ra_mps2: the films' RA readings (left, right) [m/s^2]; ra_peak_mps2: each film's peak |RA|
+    over the tick [m/s^2] (tactile/ra_tick_peak.py), None: the tick's ra_mps2."""
     t: float
     mode: Mode
     stage: object
@@ -85,6 +86,7 @@ class ContactReading:
     gripper_y_m: float
     event_matched: bool
     ra_mps2: tuple = (0.0, 0.0)
+    ra_peak_mps2: tuple | None = None
 
     @property
     def approaching(self) -> bool:
@@ -247,14 +249,16 @@ class ContactEstimator:
 
     def _sense_strike(self, memory: ContactMemory, r: ContactReading):
         """The finger-strike sense: the updated memory and the estimate's strike fields. A
-        strike is the wrist force above finger_strike.force_n or, with film_strike, one film
-        alone above the RA onset threshold, which names its finger."""
+        strike is the wrist force above finger_strike.force_n or, with film_strike, one film's
+        peak over the tick alone above the RA onset threshold, which names its finger
+        (strike_by_film: a strike at once, finger_strike.strikes)."""
         config = self._config.finger_strike
         wrist = r.wrench is not None
         if not (config.enabled and r.approaching and (wrist or self._film_strike)):
             return memory, {}
-        film = (onset_finger(r.ra_mps2, self._ra_onset_mps2) if self._film_strike
-                else None)
+        # every RA sample of the tick: a light strike's ring can last one tick or less
+        ra = r.ra_mps2 if r.ra_peak_mps2 is None else r.ra_peak_mps2
+        film = onset_finger(ra, self._ra_onset_mps2) if self._film_strike else None
         film_finger = film if film in FINGERS else ""
         baseline = (memory.strike_baseline or tuple(float(x) for x in r.wrench)) if wrist else ()
         force = strike_force_n(r.wrench, baseline) if wrist else 0.0

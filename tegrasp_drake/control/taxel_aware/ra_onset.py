@@ -2,10 +2,10 @@
 pad's SA touching, and the push still to come, (opening - width) / 2 at the onset, would
 topple the expected object (contact_geometry.release_topples): a light one-pad touch that the
 SA taxels cannot see. Stop the close (open) and Re-Reach toward the touched finger by that
-push, finger_strike.strike_shift (docs/controller.md, "An RA onset on one film stops the
+push, finger_strike.pad_touch_shift (docs/controller.md, "An RA onset on one film stops the
 close")."""
 
-from tegrasp_drake.control.finger_strike import FINGERS, strike_shift
+from tegrasp_drake.control.finger_strike import FINGERS, pad_touch_shift
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import ReReach, decide, re_reach_allowed
 from tegrasp_drake.control.rule_engine import Rule
@@ -31,7 +31,8 @@ def one_film_onset(situation) -> bool:
 
 def stop_and_shift(situation):
     e = situation.estimate
-    shift = Shift(0.0, strike_shift(e.ra_onset_finger, e.ra_onset_opening_m, e.object_width_m))
+    shift = Shift(0.0, pad_touch_shift(e.ra_onset_finger, e.ra_onset_opening_m,
+                                       e.object_width_m))
     return decide(ReReach(shift), Trigger.CORRECTIVE,
                   f"the {e.ra_onset_finger} film alone felt a touch at "
                   f"{e.ra_onset_opening_m * 1e3:.1f} mm open: stop, shift "
