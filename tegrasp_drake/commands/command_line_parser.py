@@ -4,20 +4,13 @@ line that does not parse alike, in one line (docs/user-guide.md, "Exit codes")."
 
 import argparse
 
-from tegrasp_drake.commands import error_boundary
+from tegrasp_drake.rig.usage_parser import UsageParser
 
 
-class CommandLineParser(argparse.ArgumentParser):
-    """argparse's parser (the `tegrasp` command's and, by add_subparsers, each
-    subcommand's), ending a command line that does not parse with one line on stderr,
-    `tegrasp sweep: error: <what> (see tegrasp sweep --help)`, the user's text quoted
-    safely (rig/files.error_line), and EXIT_USAGE; argparse's own error prints the usage
-    block first, many lines."""
-
-    def error(self, message):
-        from tegrasp_drake.rig.files import error_line
-        self.exit(error_boundary.EXIT_USAGE,
-                  f"{self.prog}: error: {error_line(message)} (see {self.prog} --help)\n")
+class CommandLineParser(UsageParser):
+    """The `tegrasp` command's parser (and, by add_subparsers, each subcommand's): a command
+    line that does not parse ends in one line, `tegrasp sweep: error: <what> (see tegrasp
+    sweep --help)` (rig/usage_parser.py)."""
 
     def parse_args(self, args=None, namespace=None):
         """argparse's parse_args, an argument no parser knows refused by the subcommand's

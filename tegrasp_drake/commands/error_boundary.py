@@ -8,8 +8,10 @@ import sys
 import tempfile
 import traceback
 
+from tegrasp_drake.rig import usage_parser
+
 EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not come up
-EXIT_USAGE = 2  # a command line that does not parse (argparse's own code)
+EXIT_USAGE = usage_parser.EXIT_USAGE  # a command line that does not parse
 EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
 
 

@@ -31,9 +31,12 @@ REPLAY_KEY = "replay_html"  # result.json's entry for the replay --html wrote
 # What each command that writes a run folder leaves at its top level, the entries that say
 # whose run a folder holds; asked in this order, since a sensitivity study's folder holds a
 # transfer's entries too (its points.json beside them). An events folder (record-events')
-# is one too: a run written into it would mix with the memorized events a sweep reads.
-RUN_OWNERS = (("sensitivity", ("points.json",)), ("transfer", ("cells", "events")),
-              ("sweep", ("trials",)), ("trial", RUN_FILES), ("record-events", (INDEX_FILE,)))
+# is one too: a run written into it would mix with the memorized events a sweep reads. Its
+# index.json is asked before the folders a transfer's or a sweep's run holds, whose names an
+# object's folder of events may have (an object called `trials`); an object's name holds no
+# '.', so no object's folder is taken for a file asked here.
+RUN_OWNERS = (("sensitivity", ("points.json",)), ("record-events", (INDEX_FILE,)),
+              ("transfer", ("cells", "events")), ("sweep", ("trials",)), ("trial", RUN_FILES))
 
 
 def run_owner(folder) -> tuple[str, str] | None:

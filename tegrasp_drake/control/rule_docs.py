@@ -3,13 +3,13 @@
 lies between `<!-- rule table: NAME -->` (`NAME, added`: only what NAME adds) and
 `<!-- end of rule table -->`; --write replaces it atomically."""
 
-import argparse
 import pathlib
 import re
 import sys
 
 from tegrasp_drake.control.controller_registry import rule_tables
 from tegrasp_drake.control.rule_engine import LIVE_MODES, RuleTable
+from tegrasp_drake.rig.usage_parser import UsageParser
 
 BEGIN = re.compile(r"^<!-- rule table: (?P<name>\w+)(?P<added>, added)? -->$", re.MULTILINE)
 END = "<!-- end of rule table -->"
@@ -84,8 +84,8 @@ def updated_page(page: str, tables: dict[str, RuleTable]) -> tuple[str, list[str
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m tegrasp_drake.control.rule_docs",
-                                     description="The controllers' rule tables as Markdown.")
+    parser = UsageParser(prog="python -m tegrasp_drake.control.rule_docs",
+                         description="The controllers' rule tables as Markdown.")
     action = parser.add_mutually_exclusive_group()
     action.add_argument("--write", type=pathlib.Path, metavar="PAGE",
                         help="regenerate the tables between their markers in PAGE")

@@ -3,12 +3,13 @@
 module's `--check PAGE` / `--write PAGE` command (the docs show what the code holds, and a
 test says so)."""
 
-import argparse
 import dataclasses
 import pathlib
 import re
 import sys
 import typing
+
+from tegrasp_drake.rig.usage_parser import UsageParser
 
 
 @dataclasses.dataclass(frozen=True)
@@ -39,7 +40,7 @@ class GeneratedTable:
     def main(self, argv=None, *, description: str = "") -> int:
         """`--check PAGE` (exit 1 when the page's table is not the generated one) or `--write
         PAGE` (replace it); exit 2 when the page cannot be read or has no markers."""
-        parser = argparse.ArgumentParser(description=description)
+        parser = UsageParser(description=description)
         group = parser.add_mutually_exclusive_group(required=True)
         group.add_argument("--check", metavar="PAGE")
         group.add_argument("--write", metavar="PAGE")

@@ -402,3 +402,26 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     assert code == 2 and captured.out == "", captured
     assert captured.err.count("\n") == 1 and "usage:" not in captured.err, captured.err
     assert captured.err.startswith(words), captured.err
+
+
+# Rule: the package's standalone docs commands refuse a command line as `tegrasp` does.
+@pytest.mark.parametrize("main, argv, words", [
+    ("tegrasp_drake.control.rule_docs", ["--bogus"],
+     "python -m tegrasp_drake.control.rule_docs: error: unrecognized arguments: --bogus "
+     "(see python -m tegrasp_drake.control.rule_docs --help)"),
+    ("tegrasp_drake.control.rule_docs", ["--write", "a", "--check", "b"],
+     "python -m tegrasp_drake.control.rule_docs: error: argument --check: not allowed with "
+     "argument --write (see "),
+    ("tegrasp_drake.sensitivity.parameters", ["--bogus"],
+     ": error: one of the arguments --check --write is required (see "),
+    ("tegrasp_drake.scenario.rule_reach", ["--check"],
+     ": error: argument --check: expected one argument (see "),
+])
+def test_a_docs_command_line_that_does_not_parse_is_one_line(main, argv, words, capfd):
+    import importlib
+    with pytest.raises(SystemExit) as exit_:
+        importlib.import_module(main).main(argv)
+    captured = capfd.readouterr()
+    assert exit_.value.code == 2 and captured.out == "", captured
+    assert captured.err.count("\n") == 1 and "usage:" not in captured.err, captured.err
+    assert words in captured.err, captured.err

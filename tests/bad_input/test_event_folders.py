@@ -121,6 +121,21 @@ def test_record_events_refuses_a_runs_folder_before_simulating(make, words, tmp_
     assert folder_contents(run) == before and not (run / "index.json").exists()
 
 
+# Rule: an events folder is told from a run's by its index.json, not by its folders'
+# names: an object may be called what a sweep's or a transfer's folder is.
+@pytest.mark.parametrize("object_name", ["trials", "cells", "events"])
+def test_an_events_folder_holding_an_object_named_like_a_runs_folder_is_an_events_folder(
+        object_name, tmp_path, capfd):
+    from tegrasp_drake.commands.run_folder import other_run_problem
+    events = tmp_path / "ev"
+    save_memorized_events(events, memorized_events(object_name))
+    assert other_run_problem(events, "record-events") is None
+    before = folder_contents(events)
+    code, text = run_cli(["sweep", "--out", str(events), "--dry-run"], capfd)
+    assert_one_line_error(code, text, f"--out {events}", "memorized events (index.json)")
+    assert folder_contents(events) == before
+
+
 def test_an_events_variable_naming_a_runs_folder_is_refused(tmp_path, monkeypatch, capfd,
                                                             no_simulation):
     (tmp_path / "result.json").write_text("{}")
