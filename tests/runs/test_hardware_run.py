@@ -115,3 +115,13 @@ def test_a_log_file_removed_during_the_run_is_a_stopped_log(tmp_path):
     finally:
         assert writer.close(linger=0.0) == 0  # counted as nothing, not an error
     assert problem is not None and "removed" in problem and "run.lcmlog" in problem
+
+
+def test_every_result_json_holds_the_keys_a_hardware_result_is_known_by(tmp_path):
+    """hardware --overwrite tells an earlier run's result.json by HARDWARE_RESULT_KEYS: each
+    must be a key of every HardwareRunResult's JSON form, logged or not."""
+    from tegrasp_drake.runs.hardware_run import HARDWARE_RESULT_KEYS, HardwareRunResult
+    for log_path in (None, tmp_path / "run.lcmlog"):
+        result = HardwareRunResult(transitions=[], faults=(), sim_time=0.0, wall_time=0.0,
+                                   log_path=log_path, log_messages=0, device_counters={})
+        assert set(HARDWARE_RESULT_KEYS) <= set(result.as_dict()), result.as_dict().keys()
