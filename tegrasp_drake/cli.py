@@ -6,6 +6,7 @@ SIGTERM, SIGHUP and the other catchable terminating signals end a run as Ctrl-C 
 commands/output_streams.py. Exit codes: docs/user-guide.md, "Exit codes"."""
 
 import argparse
+import errno
 import importlib
 import signal
 import sys
@@ -152,6 +153,11 @@ def _run_command(argv, process_ends: bool = False) -> int:
         except BaseException as error:  # noqa: BLE001: the error boundary
             if interrupt_received():  # a Ctrl-C that Drake wrapped in another exception
                 return _interrupted(interrupt_received())
+            if isinstance(error, OSError) and error.errno == errno.ENAMETOOLONG:
+                # a path the user gave, wherever a command first used it
+                print(f"tegrasp: error: {error_boundary.path_too_long_line(error)}",
+                      file=sys.stderr, flush=True)
+                return EXIT_ERROR
             return error_boundary.internal_error(error, argv)
 
 

@@ -15,6 +15,30 @@ EXIT_USAGE = usage_parser.EXIT_USAGE  # a command line that does not parse
 EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
 
 
+def path_too_long_line(error: OSError) -> str:
+    """The one line for a path the file system refused as too long (ENAMETOOLONG): only a
+    path the user gave, or one made from it, can be; names it (cut to about 80 characters)."""
+    from tegrasp_drake.rig.ranges import shorten
+    path = error.filename if error.filename is not None else error.filename2
+    what = "a path" if path is None else f"the path '{shorten(os.fsdecode(path))}'"
+    return (f"{what} is too long for the file system (each name at most "
+            f"{_name_max()} bytes, the whole at most {_path_max()}): give a shorter one")
+
+
+def _name_max() -> int:
+    try:
+        return os.pathconf("/", "PC_NAME_MAX")
+    except (OSError, ValueError):
+        return 255  # POSIX's common value (ext4, tmpfs, xfs)
+
+
+def _path_max() -> int:
+    try:
+        return os.pathconf("/", "PC_PATH_MAX")
+    except (OSError, ValueError):
+        return 4096  # Linux's PATH_MAX (limits.h)
+
+
 def internal_error(error: BaseException, argv, program: str = "tegrasp") -> int:
     """One line on stderr for an exception no command foresaw, `program` first; its traceback
     in a file (printed too when `argv` asks for -v)."""

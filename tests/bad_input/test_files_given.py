@@ -91,6 +91,13 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
     ("11 a 300 kB --set key", None, ["trial", "--set", f"{BIG}=1"], ["(300000 characters)"]),
     ("11 a 300 kB --set number", None, ["trial", "--set", f"random_seed={BIG}"],
      ["field 'random_seed' must be an integer"]),
+    ("12 --out a name past NAME_MAX", None, ["trial", "-q", "--out", "a" * 300],
+     ["(300 characters)' is too long for the file system", "give a shorter one"]),
+    ("12 --out a path past PATH_MAX", None, ["trial", "-q", "--out", "/".join(["d"] * 3000)],
+     ["(5999 characters)' is too long for the file system"]),
+    ("12 --scenario a name past NAME_MAX", None,
+     ["trial", "-q", "--scenario", "a" * 300 + ".yaml", "--scenario-name", "x"],
+     ["(305 characters)' is too long for the file system"]),
 ]
 
 
