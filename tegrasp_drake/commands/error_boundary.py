@@ -22,21 +22,17 @@ def path_too_long_line(error: OSError) -> str:
     path = error.filename if error.filename is not None else error.filename2
     what = "a path" if path is None else f"the path '{shorten(os.fsdecode(path))}'"
     return (f"{what} is too long for the file system (each name at most "
-            f"{_name_max()} bytes, the whole at most {_path_max()}): give a shorter one")
+            f"{_path_limit('PC_NAME_MAX', 255)} bytes, the whole at most "
+            f"{_path_limit('PC_PATH_MAX', 4096)}): give a shorter one")
 
 
-def _name_max() -> int:
+def _path_limit(name: str, usual: int) -> int:
+    """The root file system's limit `name` (os.pathconf), else `usual`: Linux's NAME_MAX 255
+    and PATH_MAX 4096 (limits.h)."""
     try:
-        return os.pathconf("/", "PC_NAME_MAX")
+        return os.pathconf("/", name)
     except (OSError, ValueError):
-        return 255  # POSIX's common value (ext4, tmpfs, xfs)
-
-
-def _path_max() -> int:
-    try:
-        return os.pathconf("/", "PC_PATH_MAX")
-    except (OSError, ValueError):
-        return 4096  # Linux's PATH_MAX (limits.h)
+        return usual
 
 
 def internal_error(error: BaseException, argv, program: str = "tegrasp") -> int:
