@@ -20,7 +20,7 @@ from tegrasp_drake.sweep.trial_function import trial_events
 from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,
                                              load_waited_the_timeout, matched, run_scene)
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.long_file]
 
 DEFAULT_WORLD = ()
 
