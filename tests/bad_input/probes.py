@@ -69,6 +69,16 @@ def run_probe(make, argv, folder: pathlib.Path, monkeypatch, capfd):
     return before, entries, code, text
 
 
+def assert_probe_refused(make, argv, expected, folder: pathlib.Path, monkeypatch, capfd):
+    """Runs a probe (run_probe) and asserts its one-line error naming `expected` and that no
+    file it found was lost or changed; returns (its entries before, what it printed)."""
+    before, entries, code, text = run_probe(make, argv, folder, monkeypatch, capfd)
+    assert_one_line_error(code, text, *expected)
+    after = folder_contents(folder)
+    assert {name: after.get(name) for name in before} == before  # nothing lost or changed
+    return entries, text
+
+
 def assert_one_line_error(code, text, *expected):
     assert code != 0, text
     assert "Traceback" not in text, text

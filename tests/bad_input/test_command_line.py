@@ -17,7 +17,7 @@ from tegrasp_drake import cli
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.rig import files
 from tests.bad_input.probes import (FAKE_TRIALS, SEEDED_SWEEP, assert_one_line_error,
-                                    folder_contents, refusal, run_cli, run_probe,
+                                    assert_probe_refused, refusal, run_cli,
                                     tegrasp_in_child_process)
 
 OWN_BOX = ["--set", "object.shape=box", "--set", "object.size=[0.04,0.04,0.1]",
@@ -146,10 +146,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
                          ids=[probe[0] for probe in PROBES])
 def test_a_probe_stops_with_one_line_and_loses_nothing(make, argv, expected, tmp_path,
                                                        monkeypatch, capfd):
-    before, _, code, text = run_probe(make, argv, tmp_path, monkeypatch, capfd)
-    assert_one_line_error(code, text, *expected)
-    after = folder_contents(tmp_path)
-    assert {name: after.get(name) for name in before} == before  # nothing lost or changed
+    assert_probe_refused(make, argv, expected, tmp_path, monkeypatch, capfd)
     assert not (tmp_path / "hacked").exists()
 
 

@@ -84,41 +84,33 @@ def no_simulation(monkeypatch):
     monkeypatch.setattr(paper_events, "record_events", simulated)
 
 
-@pytest.mark.parametrize("damage, words", [
-    (lambda ev: (ev / "index.json").mkdir(), "is a folder"),
+# Rule: record-events refuses, before it simulates, a destination it could not save into,
+# and a folder that holds another command's run (as --out refuses one command's folder to
+# another): the events would mix with the run's files.
+@pytest.mark.parametrize("make, words, refusal", [
+    (lambda ev: (ev / "index.json").mkdir(), "is a folder", "nothing was recorded"),
     (lambda ev: (ev / "index.json").write_text('{"format": "tegrasp.memorized_event_index", '),
-     "is not valid JSON"),
+     "is not valid JSON", "nothing was recorded"),
     (lambda ev: (ev / "box").write_text("a file where the box's folder belongs"),
-     "is not a folder"),
-])
-def test_record_events_refuses_a_destination_it_could_not_save_into_before_simulating(
-        damage, words, tmp_path, capfd, no_simulation):
+     "is not a folder", "nothing was recorded"),
+    (lambda run: (run / "result.json").write_text("{}"), "`tegrasp trial` run (result.json)",
+     "not a run's folder"),
+    (lambda run: (run / "trial.npz").write_bytes(b"PK"), "`tegrasp trial` run (trial.npz)",
+     "not a run's folder"),
+    (lambda run: (run / "trials").mkdir(), "`tegrasp sweep` run (trials)", "not a run's folder"),
+    (lambda run: (run / "points.json").write_text("{}"), "`tegrasp sensitivity` run",
+     "not a run's folder"),
+], ids=["index-folder", "index-truncated", "object-file", "result", "log", "sweep",
+        "sensitivity"])
+def test_record_events_refuses_a_destination_before_simulating(make, words, refusal, tmp_path,
+                                                               capfd, no_simulation):
     events = tmp_path / "ev"
     events.mkdir()
-    damage(events)
+    make(events)
     before = folder_contents(events)
     code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
-    assert_one_line_error(code, text, f"--events {events}", words, "nothing was recorded")
+    assert_one_line_error(code, text, f"--events {events}", words, refusal)
     assert folder_contents(events) == before
-
-
-# Rule: record-events refuses a folder that holds another command's run (as --out refuses
-# one command's folder to another): the events would mix with the run's files.
-@pytest.mark.parametrize("make, words", [
-    (lambda run: (run / "result.json").write_text("{}"), "`tegrasp trial` run (result.json)"),
-    (lambda run: (run / "trial.npz").write_bytes(b"PK"), "`tegrasp trial` run (trial.npz)"),
-    (lambda run: (run / "trials").mkdir(), "`tegrasp sweep` run (trials)"),
-    (lambda run: (run / "points.json").write_text("{}"), "`tegrasp sensitivity` run"),
-], ids=["result", "log", "sweep", "sensitivity"])
-def test_record_events_refuses_a_runs_folder_before_simulating(make, words, tmp_path, capfd,
-                                                               no_simulation):
-    run = tmp_path / "run"
-    run.mkdir()
-    make(run)
-    before = folder_contents(run)
-    code, text = run_cli(["record-events", "--object", "box", "--events", str(run)], capfd)
-    assert_one_line_error(code, text, f"--events {run}", words, "not a run's folder")
-    assert folder_contents(run) == before and not (run / "index.json").exists()
 
 
 # Rule: an events folder is told from a run's by its index.json, not by its folders'
