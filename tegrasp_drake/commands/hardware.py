@@ -77,22 +77,25 @@ MAX_DURATION_S = HARDWARE_RUN_DURATION.high
 
 
 def duration_seconds(text: str) -> float:
-    """--duration: a number of seconds in [one arm command period, MAX_DURATION_S]: a shorter
-    run would end before the controller sent the arm its first command (the JACO2 driver's
-    100 Hz, hardware/jaco/jaco_lcm.py)."""
-    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_LCM_PERIOD
+    """--duration's number of seconds: text that is not a number does not parse (exit 2);
+    its range is checked by duration_problem when the command runs (bad input, exit 1)."""
     try:
-        value = float(text)
+        return float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+        raise argparse.ArgumentTypeError(f"'{shorten(text)}' is not a number of seconds") from None
+
+
+def duration_problem(value: float) -> str | None:
+    """Why --duration `value` is refused, or None: a number of seconds in [one arm command
+    period, MAX_DURATION_S]: a shorter run would end before the controller sent the arm its
+    first command (the JACO2 driver's 100 Hz, hardware/jaco/jaco_lcm.py)."""
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_LCM_PERIOD
     if not HARDWARE_RUN_DURATION.contains(value):  # also refuses nan
-        raise argparse.ArgumentTypeError(f"{text}: give a duration in (0, {MAX_DURATION_S:g}] "
-                                         "seconds")
+        return (f"--duration {value:g}: give a duration in (0, {MAX_DURATION_S:g}] seconds")
     if value < JACO_LCM_PERIOD:
-        raise argparse.ArgumentTypeError(
-            f"{text}: give at least {JACO_LCM_PERIOD:g} s, one period of the arm's commands "
-            "(a shorter run ends before the arm is commanded)")
-    return value
+        return (f"--duration {value:g}: give at least {JACO_LCM_PERIOD:g} s, one period of the "
+                "arm's commands (a shorter run ends before the arm is commanded)")
+    return None
 
 
 def _events_folder(events, args, scenario) -> str:
@@ -209,6 +212,9 @@ def run(args) -> int:
     from tegrasp_drake.hardware.config import LoadHardwareConfig
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.hardware.config import HardwareStationConfig
+    problem = args.duration is not None and duration_problem(args.duration)
+    if problem:  # a number outside its range: bad input, not a command line that does not parse
+        raise SystemExit(f"tegrasp: error: {problem}")
     scenario = scenario_from_arguments(args)
     if args.config:
         try:
