@@ -309,16 +309,18 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
 def _run_holding_log(args, scenario, config, events, corrective, log, result_path) -> int:
     from tegrasp_drake.runs.hardware_run import LOG_MIN_FREE_BYTES, run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
-    for taken in (pathlib.Path(log), result_path):
-        if taken.exists() and not args.overwrite:
-            raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
-                             f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
-                             "another --log, or --overwrite to replace it")
     earlier = [taken for taken in (pathlib.Path(log), result_path) if taken.exists()]
     for taken in earlier:  # --overwrite replaces a run's log and result, nothing else
+        # What the file is, first: one that is not a run's log or result (a trial's
+        # result.json given as --log) is said as such, with or without --overwrite.
         problem = earlier_run_file_problem(taken, is_log=taken == pathlib.Path(log))
         if problem:
             raise SystemExit(f"tegrasp: error: --log {log}: {taken} {problem}")
+    for taken in earlier:
+        if not args.overwrite:
+            raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
+                             f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
+                             "another --log, or --overwrite to replace it")
     problem = free_space_problem(  # before the devices come up
         pathlib.Path(log).parent, LOG_MIN_FREE_BYTES, "its log (ten seconds of the bus)")
     if problem:

@@ -19,6 +19,7 @@ from tegrasp_drake.rig import files
 from tests.bad_input.probes import (FAKE_TRIALS, SEEDED_SWEEP, assert_one_line_error,
                                     folder_contents, refusal, run_cli, run_probe,
                                     tegrasp_in_child_process)
+from tests.runs.earlier_hardware_run import EARLIER_RESULT
 
 OWN_BOX = ["--set", "object.shape=box", "--set", "object.size=[0.04,0.04,0.1]",
            "--set", "object.mass=0.1", "--set", "object.friction=0.5"]
@@ -41,7 +42,7 @@ def _large_scenario(folder):
 
 def _hardware_result(folder):
     (folder / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    (folder / "run.result.json").write_text("an earlier result")
+    (folder / "run.result.json").write_text(EARLIER_RESULT)
 
 
 def _earlier_run(folder):
