@@ -307,8 +307,8 @@ def public_dataclass(cls):
     naming class and field (check_field_types, which a __post_init__ that reads its fields'
     values calls first). A keyword argument or an attribute that is not a field is refused
     naming the class and what to write (the field a moved setting is now, what replaced a
-    removed one, the closest field name); assigning a field of a frozen class, in one line saying how to
-    make a changed copy (FrozenFieldError)."""
+    removed one, the closest field name); assigning a field of a frozen class, in one line
+    saying how to make a changed copy (FrozenFieldError)."""
     init = cls.__init__
     parameters = inspect.signature(init).parameters
     if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values()):
