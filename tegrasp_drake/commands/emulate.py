@@ -68,7 +68,7 @@ def register(subparsers) -> None:
                         "likewise (`emulate robotiq` on --lcm-url, or the one of `all`), so "
                         "the pads never show a release the controller has not commanded "
                         "(default: on with `all`, else off)")
-    parser.add_argument("--inject-fault", metavar="CODE@SECONDS",
+    parser.add_argument("--inject-fault", type=fault_option, metavar="CODE@SECONDS",
                         help="robotiq/all: set gFLT to CODE (hexadecimal with 0x, e.g. "
                         "0x0E, or decimal, e.g. 14) SECONDS after the gripper's activation "
                         "completes")
@@ -98,18 +98,31 @@ def config_written_line(emulators, path) -> str:
 FAULT_CODE = re.compile(r"\s*(0[xX][0-9a-fA-F]+|[0-9]+)\s*")
 
 
-def _parse_fault(text) -> FaultInjection:
-    """CODE@SECONDS: CODE a gFLT fault (4 bits, not 0x0, which is no fault: 0x1..0xF, or
-    decimal 1..15), SECONDS finite and >= 0."""
+def _fault_parts(text: str) -> tuple[int, float]:
+    """(CODE, SECONDS) of CODE@SECONDS, ValueError when `text` is not of that form."""
+    code, at = text.split("@")
+    if not FAULT_CODE.fullmatch(code):
+        raise ValueError(code)
+    return int(code, 0 if code.strip()[:2].lower() == "0x" else 10), float(at)
+
+
+def fault_option(text: str) -> str:
+    """--inject-fault's text, once it is of the form CODE@SECONDS (text of another form does
+    not parse: exit 2); CODE and SECONDS are checked against their ranges by _parse_fault
+    when the command runs (bad input, exit 1)."""
     try:
-        code, at = text.split("@")
-        if not FAULT_CODE.fullmatch(code):
-            raise ValueError(code)
-        code, at = int(code, 0 if code.strip()[:2].lower() == "0x" else 10), float(at)
+        _fault_parts(text)
     except ValueError:
-        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': expected "
-                         "CODE@SECONDS, CODE hexadecimal with 0x or decimal, e.g. 0x0E@3.5 "
-                         "or 14@3.5") from None
+        raise argparse.ArgumentTypeError(
+            f"'{shorten(text)}': expected CODE@SECONDS, CODE hexadecimal with 0x or decimal, "
+            "e.g. 0x0E@3.5 or 14@3.5") from None
+    return text
+
+
+def _parse_fault(text) -> FaultInjection:
+    """CODE@SECONDS (its form checked by fault_option): CODE a gFLT fault (4 bits, not 0x0,
+    which is no fault: 0x1..0xF, or decimal 1..15), SECONDS in FAULT_DELAY."""
+    code, at = _fault_parts(text)
     if not 0 < code <= GFLT_MAX:
         raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': the 2F-85's "
                          f"fault register gFLT holds 4 bits, 0x0 being no fault; give a CODE "

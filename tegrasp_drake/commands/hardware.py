@@ -77,22 +77,25 @@ MAX_DURATION_S = HARDWARE_RUN_DURATION.high
 
 
 def duration_seconds(text: str) -> float:
-    """--duration: a number of seconds in [one arm command period, MAX_DURATION_S]: a shorter
-    run would end before the controller sent the arm its first command (the JACO2 driver's
-    100 Hz, hardware/jaco/jaco_lcm.py)."""
-    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_LCM_PERIOD
+    """--duration's number of seconds: text that is not a number does not parse (exit 2);
+    its range is checked by duration_problem when the command runs (bad input, exit 1)."""
     try:
-        value = float(text)
+        return float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"'{text}' is not a number of seconds") from None
+        raise argparse.ArgumentTypeError(f"'{shorten(text)}' is not a number of seconds") from None
+
+
+def duration_problem(value: float) -> str | None:
+    """Why --duration `value` is refused, or None: a number of seconds in [one arm command
+    period, MAX_DURATION_S]: a shorter run would end before the controller sent the arm its
+    first command (the JACO2 driver's 100 Hz, hardware/jaco/jaco_lcm.py)."""
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_LCM_PERIOD
     if not HARDWARE_RUN_DURATION.contains(value):  # also refuses nan
-        raise argparse.ArgumentTypeError(f"{text}: give a duration in (0, {MAX_DURATION_S:g}] "
-                                         "seconds")
+        return (f"--duration {value:g}: give a duration in (0, {MAX_DURATION_S:g}] seconds")
     if value < JACO_LCM_PERIOD:
-        raise argparse.ArgumentTypeError(
-            f"{text}: give at least {JACO_LCM_PERIOD:g} s, one period of the arm's commands "
-            "(a shorter run ends before the arm is commanded)")
-    return value
+        return (f"--duration {value:g}: give at least {JACO_LCM_PERIOD:g} s, one period of the "
+                "arm's commands (a shorter run ends before the arm is commanded)")
+    return None
 
 
 def _events_folder(events, args, scenario) -> str:
@@ -209,6 +212,9 @@ def run(args) -> int:
     from tegrasp_drake.hardware.config import LoadHardwareConfig
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.hardware.config import HardwareStationConfig
+    problem = args.duration is not None and duration_problem(args.duration)
+    if problem:  # a number outside its range: bad input, not a command line that does not parse
+        raise SystemExit(f"tegrasp: error: {problem}")
     scenario = scenario_from_arguments(args)
     if args.config:
         try:
@@ -225,7 +231,7 @@ def run(args) -> int:
     if problem:
         where = args.config or "the scenario's station"
         origin = lcm_url_origin(config.arm.lcm_url, "field 'arm.lcm_url'")
-        raise SystemExit(f"tegrasp: error: {where}: {origin} {problem}, got "
+        raise SystemExit(f"tegrasp: error: {shorten(where)}: {origin} {problem}, got "
                          f"{shorten(repr(config.arm.lcm_url))}")
     source = args.config or "the scenario's station"
     logger.info(f"hardware: devices checked ({source}): arm "
@@ -245,8 +251,8 @@ def run(args) -> int:
         # run's pair would go (failed_run_path).
         problem = output_file_problem(taken)
         if problem:
-            where = "" if taken == pathlib.Path(log) else f": {taken}"
-            raise SystemExit(f"tegrasp: error: --log {log}{where} {problem}")
+            where = "" if taken == pathlib.Path(log) else f": {shorten(str(taken))}"
+            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}{where} {problem}")
     pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
     # One run at a time per --log: a second one (with --overwrite or not) would replace the
     # first one's log and result under it.
@@ -255,12 +261,12 @@ def run(args) -> int:
         try:
             stack.enter_context(held_file(log))
         except FileHeldError:
-            raise SystemExit(f"tegrasp: error: --log {log}: another tegrasp hardware run is "
-                             "writing it now; give another --log, or wait for that run to "
-                             "end") from None
+            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}: another tegrasp "
+                             "hardware run is writing it now; give another --log, or wait "
+                             "for that run to end") from None
         except OSError as e:
-            raise SystemExit(f"tegrasp: error: --log {log}: cannot make its lock file "
-                             f"beside it: {e.strerror or e}") from None
+            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}: cannot make its "
+                             f"lock file beside it: {e.strerror or e}") from None
         return _run_holding_log(args, scenario, config, events, corrective, log,
                                 result_path)
 
@@ -303,20 +309,23 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
 def _run_holding_log(args, scenario, config, events, corrective, log, result_path) -> int:
     from tegrasp_drake.runs.hardware_run import LOG_MIN_FREE_BYTES, run_on_hardware
     from tegrasp_drake.hardware.station import HardwareNotReadyError
-    for taken in (pathlib.Path(log), result_path):
-        if taken.exists() and not args.overwrite:
-            raise SystemExit(f"tegrasp: error: {taken} already holds a run's "
-                             f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
-                             "another --log, or --overwrite to replace it")
     earlier = [taken for taken in (pathlib.Path(log), result_path) if taken.exists()]
     for taken in earlier:  # --overwrite replaces a run's log and result, nothing else
+        # What the file is, first: one that is not a run's log or result (a trial's
+        # result.json given as --log) is said as such, with or without --overwrite.
         problem = earlier_run_file_problem(taken, is_log=taken == pathlib.Path(log))
         if problem:
-            raise SystemExit(f"tegrasp: error: --log {log}: {taken} {problem}")
+            where = "" if taken == pathlib.Path(log) else f": {shorten(str(taken))}"
+            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}{where} {problem}")
+    for taken in earlier:
+        if not args.overwrite:
+            raise SystemExit(f"tegrasp: error: {shorten(str(taken))} already holds a run's "
+                             f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
+                             "another --log, or --overwrite to replace it")
     problem = free_space_problem(  # before the devices come up
         pathlib.Path(log).parent, LOG_MIN_FREE_BYTES, "its log (ten seconds of the bus)")
     if problem:
-        raise SystemExit(f"tegrasp: error: --log {log} {problem}")
+        raise SystemExit(f"tegrasp: error: --log {shorten(str(log))} {problem}")
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
     # until this run's replace them together at the end (commit_hardware_run), and a run
     # that fails keeps them (its own go beside them, failed_run_path). A killed run's
@@ -356,7 +365,8 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
                                  result=str(target_result)))
     except OSError as e:
         kept, replaced = keep_incomplete_log(staged, log)
-        raise SystemExit(f"tegrasp: error: cannot write the run's result to {target_result}: "
+        raise SystemExit(f"tegrasp: error: cannot write the run's result to "
+                         f"{shorten(str(target_result))}: "
                          f"{e.strerror or e}"
                          + (f"; its log is in {incomplete_log_words(kept, replaced, log)}"
                             if kept else "") + kept_words)

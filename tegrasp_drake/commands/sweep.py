@@ -130,6 +130,18 @@ def register(subparsers) -> None:
     parser.set_defaults(func=run)
 
 
+def check_spec_options(args) -> None:
+    """OptionError for --attempts or --base-seed outside the range of the spec field it sets
+    (declared on SweepSpec): a number that parses but is refused is bad input (exit 1), as
+    for --workers, not a spec refused; the study's size is checked with the spec."""
+    from tegrasp_drake.rig.ranges import field_range
+    for option, name in (("--attempts", "attempts"), ("--base-seed", "base_seed")):
+        value = getattr(args, name, None)
+        allowed = field_range(SweepSpec, name)
+        if value is not None and not allowed.contains(value):
+            raise OptionError(f"{option} {allowed.words(value)}, got {value}")
+
+
 def spec_from_arguments(args) -> SweepSpec:
     """The spec file (or the paper's defaults) with the command-line overrides applied."""
     spec = LoadSweepSpec(args.spec) if args.spec else SweepSpec()
@@ -380,6 +392,7 @@ def run(args) -> int:
         if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
             raise OptionError("--benchmark times the local process pool; drop --scheduler")
         check_runner_arguments(args, "sweep")
+        check_spec_options(args)
         with scheduler_connection(args, "sweep") as scheduler:
             spec = spec_from_arguments(args)
             trial_function = resolve_trial_function(args.trial_function)

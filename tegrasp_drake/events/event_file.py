@@ -118,6 +118,8 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
         if not isinstance(data, dict) or data.get("format") != expected_format:
             return f"is not a '{expected_format}' file"
         version = data.get("format_version")  # 3.0 reads as 3; JSON's true is no version
+        if version is None:  # absent (or null): not written by any version
+            return f"has no format_version, so `{RECORD_COMMAND}` did not write it"
         if isinstance(version, bool) or version not in (*MIGRATED_VERSIONS, FORMAT_VERSION):
             return (f"has format_version {data.get('format_version')!r}; this tegrasp reads "
                     f"versions {', '.join(map(str, (*MIGRATED_VERSIONS, FORMAT_VERSION)))}")

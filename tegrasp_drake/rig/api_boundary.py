@@ -305,13 +305,21 @@ def public_dataclass(cls):
     type where that is str, int, float or bool (or optional: `hold_success='yes'`), and a
     text string in a field annotated as a collection (`objects='box'` for `tuple[str, ...]`),
     naming class and field (check_field_types, which a __post_init__ that reads its fields'
-    values calls first). Assigning an attribute that is not a field is refused naming the
-    class and what to write; assigning a field of a frozen class, in one line saying how to
-    make a changed copy (FrozenFieldError)."""
+    values calls first). A keyword argument or an attribute that is not a field is refused
+    naming the class and what to write (the field a moved setting is now, what replaced a
+    removed one, the closest field name); assigning a field of a frozen class, in one line
+    saying how to make a changed copy (FrozenFieldError)."""
     init = cls.__init__
+    parameters = inspect.signature(init).parameters
+    if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values()):
+        parameters = None  # an __init__ of its own that takes any keyword
 
     @functools.wraps(init)
     def checked_init(self, *args, **kwargs):
+        unknown = next((name for name in kwargs if parameters is not None
+                        and name not in parameters), None)
+        if unknown is not None:  # a misspelt, moved or removed setting: say which, in one line
+            raise TypeError(_no_such_field(cls, unknown))
         init(self, *args, **kwargs)
         if type(self) is cls:  # a subclass's own fields are its own decorator's
             check_field_types(self)
@@ -386,8 +394,11 @@ def _refuse_change(self, name: str, value=None) -> None:
 
 def _no_such_field(cls, name: str) -> str:
     """'<cls> has no field '<name>': <advice>', the advice the field it moved to, else the
-    closest field name, else the list of fields."""
+    closest field name, else the list of fields; for a removed field, what replaced it."""
     fields = cls.__dataclass_fields__
+    removed = getattr(cls, "__removed_fields__", {}).get(name)
+    if removed:  # the words of the scenario's refusal (scenario/moved_keys.py)
+        return f"{cls.__name__}: field '{name}' was removed: {removed}; leave it out"
     moved = getattr(cls, "__moved_fields__", {}).get(name)
     if moved:
         advice = f"it is now '{moved}'"
@@ -401,6 +412,12 @@ def register_moved_fields(cls, moved: dict[str, str]) -> None:
     """Names, for a public dataclass's refused attributes, the new paths of settings that
     moved (old field name -> new dotted path relative to the instance)."""
     cls.__moved_fields__ = dict(moved)
+
+
+def register_removed_fields(cls, removed: dict[str, str]) -> None:
+    """Names, for a public dataclass's refused keyword arguments and attributes, what replaced
+    the settings a version removed (old field name -> what took its place)."""
+    cls.__removed_fields__ = dict(removed)
 
 
 def check_field_values(instance, source: str | None = None) -> None:

@@ -735,9 +735,23 @@ def _float_ranged_int(text: str) -> int:
         raise JsonValueError(f"holds a number that {e}; write a finite number") from None
 
 
+class ByteOrderMarkError(ValueError):
+    """JSON text that starts with a UTF-8 byte-order mark (RFC 8259 8.1: JSON has none; some
+    Windows editors save one)."""
+
+
+_UTF8_BOM = b"\xef\xbb\xbf"
+BYTE_ORDER_MARK_PROBLEM = ("starts with a UTF-8 byte-order mark, which JSON does not take; save "
+                           "it without one")
+
+
 def load_json(text: str | bytes):
-    """The data of a user's JSON text: json.loads, refusing a duplicate key (DuplicateKeyError) and
-    NaN, Infinity or an integer no float holds (JsonValueError), both ValueErrors."""
+    """The data of a user's JSON text: json.loads, refusing a byte-order mark
+    (ByteOrderMarkError; json alone refuses a str's as bad JSON and takes a bytes' silently), a
+    duplicate key (DuplicateKeyError) and NaN, Infinity or an integer no float holds
+    (JsonValueError), all ValueErrors."""
+    if text[:1] == "\ufeff" or text[:3] == _UTF8_BOM:
+        raise ByteOrderMarkError(BYTE_ORDER_MARK_PROBLEM)
     return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
                       parse_constant=_refuse_nonstandard_constant,
                       parse_int=_float_ranged_int)
@@ -765,9 +779,13 @@ def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "
     bytes of `encoding` text, load_json's JSON, and `check(data)` (what is wrong with data of
     the wrong shape, None: nothing). JsonFileError otherwise, naming the file and `remedy`: a
     missing file, a folder, FIFO, socket or device in its place (read_bounded; no device
-    holds such a file), a decoding error, truncated JSON, a duplicate key, NaN, deep nesting."""
+    holds such a file), a byte-order mark, a decoding error, truncated JSON, a duplicate key,
+    NaN, deep nesting."""
     try:
-        data = load_json(read_bounded(path, limit, devices=()).decode(encoding))
+        raw = read_bounded(path, limit, devices=())
+        if raw.startswith(_UTF8_BOM):  # before decoding: an ASCII file's is no decoding error
+            raise ByteOrderMarkError(BYTE_ORDER_MARK_PROBLEM)
+        data = load_json(raw.decode(encoding))
         problem = check(data) if check else None
     except FileNotFoundError:
         problem = "file is missing"

@@ -146,10 +146,16 @@ def load_trial_log(path: PathLike) -> TrialLog:
         raise TrialLogError(f"trial log '{path}': its metadata is a JSON "
                             f"{type(meta).__name__}, not the object a trial log holds; it is "
                             "not a trial log (`tegrasp trial --out DIR` writes one)")
-    if not is_integer(meta.get("format_version")) or meta["format_version"] != FORMAT_VERSION:
-        version = meta.get("format_version")
-        raise TrialLogError(f"trial log '{path}' has format version {version}, this package "
-                            f"reads {FORMAT_VERSION}")
+    version = meta.get("format_version")
+    if version is None:  # absent (or null): no trial log of any version
+        raise TrialLogError(f"trial log '{path}': its metadata has no format version, so "
+                            "`tegrasp trial` did not write it; run the trial again "
+                            "(`tegrasp trial --out DIR` writes DIR/trial.npz)")
+    if not is_integer(version) or version != FORMAT_VERSION:
+        raise TrialLogError(f"trial log '{path}' has format version "
+                            f"{shorten(repr(version))}, this package reads "
+                            f"{FORMAT_VERSION}; run the trial again with this package to "
+                            "remake it")
     scenario, problem = logged_scenario(meta)
     problem = (problem or trial_arrays_problem(arrays, scenario)
                or meta_problem(meta, arrays, scenario))

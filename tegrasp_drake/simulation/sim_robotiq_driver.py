@@ -27,7 +27,7 @@ from tegrasp_drake.simulation.robotiq_drive_step import (
     DIRECTION, FORCE, GOAL, HALF_SPEED, HELD, MEMORY, MOTOR, MOVING, OBJECT, PLANNER,
     POSITION_BYTE, REF_A, REF_Q, REF_V, RESTARTS, STUCK, TIME, UPDATES, AddDriveStep,
     effective_phase, object_status_now)
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import public_dataclass, register_removed_fields
 
 _PLANNER_SIZE = len(PLANNER)
 
@@ -94,11 +94,13 @@ class GripperDriverConfig:
 # the 2F-85 drive's model (robotiq/drive.py): its gains follow from the firmware's position
 # loop (position_loop_hz) on the drive's inertia (screw_efficiency), so no value carries
 # over. scenario/moved_keys.py refuses them in a scenario given and reads a stored scenario
-# that holds them (written before the drive's model) without them.
+# that holds them (written before the drive's model) without them; GripperDriverConfig(...)
+# and an assignment refuse them with the same words.
 REMOVED_FIELDS = {
     name: "the linkage hand's PD gains now follow from gripper.position_loop_hz (the 2F-85 "
           "firmware's position loop on the drive's inertia, robotiq/drive.py)"
     for name in ("driver_position_gain", "driver_damping_gain")}
+register_removed_fields(GripperDriverConfig, REMOVED_FIELDS)
 
 
 def reference_step(q: float, v: float, goal: float, max_speed: float, acceleration: float,

@@ -222,6 +222,8 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
     if not isinstance(record, dict):
         return "not a JSON object"
     version = record.get("format_version")
+    if version is None:  # absent (or null): no record of any version
+        return "it has no format_version, so no sweep wrote it"
     if type(version) is not int or version not in _RECORD_FIELDS:
         return (f"format_version {version!r} is not one of "
                 f"{', '.join(map(str, _RECORD_FIELDS))}")

@@ -19,6 +19,7 @@ from tegrasp_drake.rig import files
 from tests.bad_input.probes import (FAKE_TRIALS, SEEDED_SWEEP, assert_one_line_error,
                                     assert_probe_refused, refusal, run_cli,
                                     tegrasp_in_child_process)
+from tests.runs.earlier_hardware_run import EARLIER_RESULT
 
 OWN_BOX = ["--set", "object.shape=box", "--set", "object.size=[0.04,0.04,0.1]",
            "--set", "object.mass=0.1", "--set", "object.friction=0.5"]
@@ -41,7 +42,7 @@ def _large_scenario(folder):
 
 def _hardware_result(folder):
     (folder / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    (folder / "run.result.json").write_text("an earlier result")
+    (folder / "run.result.json").write_text(EARLIER_RESULT)
 
 
 def _earlier_run(folder):
@@ -384,7 +385,9 @@ def test_a_runner_option_refused_is_bad_input_as_for_every_command(tmp_path, cap
     (["sweep", "--base-seed", "1e3"],
      "tegrasp sweep: error: argument --base-seed: '1e3' is not an integer "
      "(see tegrasp sweep --help)"),
-    (["hardware", "--duration", "0"], "tegrasp hardware: error: argument --duration:"),
+    (["hardware", "--duration", "abc"], "tegrasp hardware: error: argument --duration:"),
+    (["emulate", "robotiq", "--inject-fault", "abc"],
+     "tegrasp emulate: error: argument --inject-fault: 'abc': expected CODE@SECONDS"),
     (["record-events", "--controller", "open_loop"],
      "tegrasp record-events: error: unrecognized arguments: --controller open_loop "
      "(see tegrasp record-events --help)"),
@@ -399,6 +402,33 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     assert code == 2 and captured.out == "", captured
     assert captured.err.count("\n") == 1 and "usage:" not in captured.err, captured.err
     assert captured.err.startswith(words), captured.err
+
+
+# Rule: an option's value that parses but lies outside its range is bad input, exit 1, in one
+# line naming the option and its range, whichever command takes it; only a value that does not
+# parse (not a number, not of the option's form) is a command line that does not parse, exit 2
+# (docs/user-guide.md, "Exit codes").
+@pytest.mark.parametrize("argv, words", [
+    (["hardware", "--duration", "0"], "--duration 0: give a duration in (0, 600] seconds"),
+    (["hardware", "--duration", "601"], "--duration 601: give a duration in (0, 600]"),
+    (["hardware", "--duration", "-5"], "--duration -5: give a duration in (0, 600]"),
+    (["hardware", "--duration", "0.001"], "--duration 0.001: give at least 0.01 s"),
+    (["sweep", "--attempts", "0", "--dry-run"], "--attempts must be a positive integer, got 0"),
+    (["sweep", "--base-seed", "-1", "--dry-run"], "--base-seed must lie in [0, 4294967295]"),
+    (["sweep", "--workers", "0", "--dry-run"], "--workers must be at least 1, got 0"),
+    (["sweep", "--confirm-trials", "0", "--dry-run"], "--confirm-trials 0: give the study's"),
+    (["record-events", "--ensemble-runs", "-1"], "--ensemble-runs -1: give 0 (none) to 50"),
+    (["emulate", "robotiq", "--inject-fault", "14@601"], "SECONDS must lie in [0, 600] s"),
+    (["emulate", "robotiq", "--inject-fault", "0x10@3"], "gFLT holds 4 bits"),
+])
+def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, words, tmp_path,
+                                                                       monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli([*argv, "--scheduling", "normal"] if argv[0] == "emulate" else argv,
+                         capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, words)
+    assert "--help" not in text, text
 
 
 # Rule: the package's standalone docs commands refuse a command line as `tegrasp` does.

@@ -54,6 +54,35 @@ def test_unusable_events_are_named_before_the_trial_runs(spoil, expected, events
     assert_one_line_error(code, text, str(events_copy), expected)
 
 
+# Rule: an event file or index that names no format_version (absent or null) is said to be
+# none `tegrasp record-events` wrote, with how to remake it, never "format_version None".
+@pytest.mark.parametrize("name", ["box/load_lift.json", INDEX_FILE])
+@pytest.mark.parametrize("remove", [lambda data: data.pop("format_version"),
+                                    lambda data: data.update(format_version=None)])
+def test_an_event_file_without_a_format_version_says_who_writes_one(name, remove, events_copy,
+                                                                   capfd):
+    edit_json(events_copy / name, remove)
+    code, text = run_cli(["trial", "--events", str(events_copy)], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, name.split("/")[-1], "has no format_version, so "
+                          "`tegrasp record-events` did not write it", "Remake it with")
+    assert "None" not in text, text
+
+
+# Rule: an event file or index saved with a UTF-8 byte-order mark (as some Windows editors
+# save) is said to start with one, with what to do, never as JSON "perhaps truncated".
+@pytest.mark.parametrize("name", ["box/load_lift.json", INDEX_FILE])
+def test_an_event_file_with_a_byte_order_mark_says_so(name, events_copy, capfd):
+    path = events_copy / name
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    code, text = run_cli(["trial", "--events", str(events_copy)], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, name.split("/")[-1], "starts with a UTF-8 byte-order "
+                          "mark, which JSON does not take; save it without one",
+                          "Remake it with `tegrasp record-events")
+    assert "truncated" not in text, text
+
+
 def test_events_of_a_changed_builtin_object_are_refused_unless_accepted(capfd):
     code, text = run_cli(["trial", "--set", "object.mass=0.3"], capfd)
     assert_one_line_error(code, text, "mass 0.15 (recorded) != 0.3 (now)",

@@ -161,6 +161,33 @@ def test_a_log_that_stops_is_reported_once_by_the_run_and_named_by_its_closing_e
     assert len(lines) == 1 and "FAULT" in lines[0] and "log x" not in lines[0]
 
 
+def _long_log(folder, contents=None):
+    """A --log of 211 characters (a 200-character folder name), holding `contents` if given."""
+    log = pathlib.Path("d" * 200) / "run.lcmlog"
+    (folder / log.parent).mkdir()
+    if contents is not None:
+        (folder / log).write_bytes(contents)
+    return str(log)
+
+
+# Rule: `tegrasp hardware` echoes a --log (and the files beside it) cut to about 80
+# characters, saying how long it was, in every refusal: the user's typo is not echoed whole.
+@pytest.mark.parametrize("make, words", [
+    (lambda folder: "a" * 300, "cannot be used (File name too long)"),
+    (lambda folder: _long_log(folder, b"a trial's notes"), "exists and is not an LCM log"),
+    (lambda folder: _long_log(folder, EARLIER_LOG), "already holds a run's log"),
+], ids=["name-too-long", "not-an-lcm-log", "an-earlier-run"])
+def test_a_long_hardware_log_is_echoed_cut_to_about_80_characters(make, words, tmp_path,
+                                                                  monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    log = make(tmp_path)
+    code, text = run_cli(["hardware", "--config", "hw.yaml", "--log", log], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, words, f"{log[:80]}... ({len(log)} characters)")
+    assert log not in text and len(text) < 250, text
+
+
 # Rule: one path rule for an output file: what --overwrite could never replace (a device, a
 # folder) is refused as such first; only a regular file is said to hold an earlier run.
 def test_a_device_as_the_hardware_log_is_refused_as_a_device(tmp_path, monkeypatch, capfd):

@@ -288,6 +288,26 @@ def test_an_overwrite_over_a_run_file_that_is_no_regular_file_is_refused(tmp_pat
     assert len(text.strip().splitlines()) == 1, text
 
 
+# Rule: a hardware --log that names a file which is not an LCM log (a trial's result.json) is
+# said to be one, with or without --overwrite, never "already holds a run's log", and stays.
+@pytest.mark.parametrize("overwrite", [[], ["--overwrite"]])
+def test_a_hardware_log_naming_a_file_that_is_no_lcm_log_is_said_so_and_kept(
+        tmp_path, capfd, monkeypatch, overwrite):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    (tmp_path / "base").mkdir()
+    (tmp_path / "base" / "result.json").write_text('{"held": true, "controller": "memorized"}\n')
+    before = folder_contents(tmp_path)
+    code, text = run_cli(["hardware", "--config", "hw.yaml", "--log", "base/result.json",
+                          "--duration", "5", *overwrite], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "base/result.json exists and is not an LCM log",
+                          "give another --log, or remove it yourself")
+    assert "already holds" not in text, text
+    assert folder_contents(tmp_path) == before
+
+
 # Rule: a run removes only the staging folders a run left (named as mkdtemp names them,
 # holding nothing but a run's own files), never a folder of the user's with that prefix.
 def test_a_run_keeps_a_users_folder_named_like_a_staging_folder(tmp_path):

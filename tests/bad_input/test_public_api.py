@@ -134,6 +134,33 @@ def test_public_dataclasses_check_scalar_field_types_at_construction():
     assert TrialResult(hold_success=np.bool_(True), seed=np.int64(3), hold_time_s=3).seed == 3
 
 
+# Rule: a public dataclass given a keyword that is not its field says so in one line, as
+# the scenario and `--set` do: a removed field with what replaced it (the same words), a
+# moved one with its path now, a misspelt one with the closest field; never Python's
+# "unexpected keyword argument".
+def test_a_public_dataclass_given_a_removed_moved_or_misspelt_field_names_it():
+    from tegrasp_drake.control.controller_config import GraspControllerConfig
+    from tegrasp_drake.simulation.sim_robotiq_driver import GripperDriverConfig, REMOVED_FIELDS
+    calls = [
+        (lambda: GripperDriverConfig(driver_position_gain=1),
+         "GripperDriverConfig: field 'driver_position_gain' was removed: "
+         f"{REMOVED_FIELDS['driver_position_gain']}; leave it out"),
+        (lambda: GripperDriverConfig(stal_speed=0.01),
+         "GripperDriverConfig has no field 'stal_speed': did you mean 'stall_speed'?"),
+        (lambda: GraspControllerConfig(re_reach_enabled=True),
+         "GraspControllerConfig has no field 're_reach_enabled': it is now 're_reach.enabled'"),
+    ]
+    for call, words in calls:
+        with pytest.raises(TypeError) as refused:
+            call()
+        assert str(refused.value) == words
+    with pytest.raises(ConfigError) as scenario:
+        LoadScenario(overrides=["gripper.driver_position_gain=1"])
+    assert REMOVED_FIELDS["driver_position_gain"] in str(scenario.value)
+    with pytest.raises(AttributeError, match="field 'driver_damping_gain' was removed"):
+        GripperDriverConfig().driver_damping_gain = 1.0
+
+
 # Rule: a public function's number takes the range its command-line or scenario twin takes,
 # from the same declaration.
 def test_the_api_rates_noise_and_duration_share_the_command_lines_ranges():

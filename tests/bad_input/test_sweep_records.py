@@ -81,6 +81,34 @@ def test_a_corrupt_sweep_record_is_said_and_kept_aside_before_its_trial_reruns(t
     assert kept.read_text() == '{"trunc'
 
 
+# Rule: a record that names no format_version (absent or null) is said to be none a sweep
+# wrote, never "format_version None".
+@pytest.mark.parametrize("remove", [lambda data: data.pop("format_version"),
+                                    lambda data: data.update(format_version=None)])
+def test_a_sweep_record_without_a_format_version_says_no_sweep_wrote_it(remove, tmp_path):
+    spec = SweepSpec(objects=("box",), controllers=("open_loop",), attempts=1,
+                     grid=((0.0, 0.0),))
+    run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    damaged = record_path(tmp_path, expand_trials(spec)[0].trial_id)
+    record = json.loads(damaged.read_text())
+    remove(record)
+    damaged.write_text(json.dumps(record))
+    why = load_records(tmp_path).corrupt[damaged]
+    assert why == "it has no format_version, so no sweep wrote it", why
+
+
+# Rule: a record saved with a UTF-8 byte-order mark is said to start with one (the reader of
+# every JSON file says so), not "is not ASCII text".
+def test_a_sweep_record_with_a_byte_order_mark_says_so(tmp_path):
+    spec = SweepSpec(objects=("box",), controllers=("open_loop",), attempts=1,
+                     grid=((0.0, 0.0),))
+    run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    damaged = record_path(tmp_path, expand_trials(spec)[0].trial_id)
+    damaged.write_bytes(b"\xef\xbb\xbf" + damaged.read_bytes())
+    why = load_records(tmp_path).corrupt[damaged]
+    assert why.startswith("starts with a UTF-8 byte-order mark"), why
+
+
 # Rule: a public function checks its arguments as the command line does. Reports of a folder
 # that holds no trial records (none at all, or only corrupt ones) are refused naming the
 # argument and the folder, and nothing is written; `tegrasp plot table1` refuses it alike.

@@ -53,6 +53,33 @@ def test_a_damaged_trial_log_is_named_and_not_plotted(make, expected, tmp_path, 
     assert not (tmp_path / "x.png").exists()
 
 
+def _with_meta(path, meta):
+    """A small trial log whose metadata is `meta` alone."""
+    trial_log(path)
+    with np.load(path) as data:
+        contents = {name: data[name] for name in data.files}
+    np.savez_compressed(path, **{**contents, "meta": np.array(json.dumps(meta))})
+    return path
+
+
+# Rule: a trial log whose metadata names no format version (`{}`, or a null version) is said to
+# be no trial log of tegrasp's, with how to make one, never "format version None"; a log of
+# another version says which, and to run the trial again.
+@pytest.mark.parametrize("meta, expected", [
+    ({}, "its metadata has no format version, so `tegrasp trial` did not write it; run the "
+         "trial again (`tegrasp trial --out DIR` writes DIR/trial.npz)"),
+    ({"format_version": None}, "its metadata has no format version"),
+    ({"format_version": 7}, "has format version 7, this package reads 1; run the trial again"),
+])
+def test_a_trial_log_without_a_format_version_says_so_and_how_to_remake_it(meta, expected,
+                                                                           tmp_path, capfd):
+    path = _with_meta(tmp_path / "meta_empty.npz", meta)
+    code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "x.png")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, str(path), expected)
+    assert "None" not in text, text
+
+
 def test_a_logged_scenario_is_checked_as_a_loaded_one():
     text = scenario_to_yaml(LoadScenario(name="box"))
     assert scenario_from_yaml(text).object.mass > 0

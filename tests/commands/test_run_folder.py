@@ -19,6 +19,7 @@ from tegrasp_drake.hardware.device_fault import DeviceFault
 from tegrasp_drake.hardware.myrio.serial_reader import TactileReaderCounters
 from tegrasp_drake.hardware.myrio.tactile_frame import TactileDecoderCounters
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusCounters
+from tests.runs.earlier_hardware_run import EARLIER_LOG, EARLIER_RESULT
 
 
 def earlier_run(folder, name="trial.npz"):
@@ -109,12 +110,12 @@ def test_hardware_refuses_an_existing_log_before_connecting(tmp_path, capsys):
     config = tmp_path / "hw.yaml"
     config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
     log = tmp_path / "run.lcmlog"
-    log.write_bytes(b"an earlier run")
+    log.write_bytes(EARLIER_LOG)
     with pytest.raises(SystemExit) as exit_info:
         cli.main(["hardware", "--config", str(config), "--log", str(log)])
     message = str(exit_info.value.code)
     assert message.startswith("tegrasp: error: ") and str(log) in message
-    assert "--overwrite" in message and log.read_bytes() == b"an earlier run"
+    assert "--overwrite" in message and log.read_bytes() == EARLIER_LOG
     assert result_path_beside_log(log) == tmp_path / "run.result.json"
 
 
@@ -173,11 +174,11 @@ def test_hardware_keeps_an_earlier_result_when_its_log_is_gone(tmp_path):
     config = tmp_path / "hw.yaml"
     config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
     result = tmp_path / "run.result.json"
-    result.write_text("an earlier result")
+    result.write_text(EARLIER_RESULT)
     with pytest.raises(SystemExit) as exit_info:
         cli.main(["hardware", "--config", str(config), "--log", str(tmp_path / "run.lcmlog")])
     assert str(result) in str(exit_info.value.code) and "--overwrite" in str(exit_info.value.code)
-    assert result.read_text() == "an earlier result"
+    assert result.read_text() == EARLIER_RESULT
 
 
 def _ended_process_id() -> int:

@@ -203,10 +203,11 @@ def test_an_injected_fault_code_is_hexadecimal_with_0x_or_decimal(text, code):
 
 @pytest.mark.parametrize("text", ["0b1110@3", "0o16@3", "1_4@3"])
 def test_an_injected_fault_code_in_another_notation_is_refused_naming_both(text):
-    from tegrasp_drake.commands.emulate import _parse_fault
-    with pytest.raises(SystemExit) as refused:
-        _parse_fault(text)
-    assert "hexadecimal with 0x or decimal" in str(refused.value.code)
+    import argparse
+    from tegrasp_drake.commands.emulate import fault_option
+    with pytest.raises(argparse.ArgumentTypeError) as refused:
+        fault_option(text)
+    assert "hexadecimal with 0x or decimal" in str(refused.value)
 
 
 def test_another_controllers_arm_commands_are_heard_before_a_run():
