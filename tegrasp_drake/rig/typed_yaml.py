@@ -294,6 +294,7 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
     tagged Unions; Drake's config classes are checked by Drake). `stored`: the text this
     package wrote (a log's or an event's scenario), whose empty "not set" fields are read as
     not set: versions before scenario_to_yaml dropped them wrote them; a user's are refused."""
+    _refuse_tag(data, where, source)
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)
@@ -483,8 +484,18 @@ def require(condition: bool, source: str, path: str, words: str, value) -> None:
         raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
 
 
+def _refuse_tag(value, path: str, source: str) -> None:
+    """ConfigError if `value` is a mapping a YAML tag marks (core_schema_yaml adds its
+    `_tag`) where no tag selects a variant (a Union of config classes consumes its own)."""
+    if isinstance(value, dict) and "_tag" in value:
+        words = f"a YAML tag ({shorten(str(value['_tag']))}) is not allowed here; remove it"
+        raise ConfigError(f"{source}: field '{path}': {words}" if path else f"{source}: {words}")
+
+
 def _check_value(value, hint, path: str, source: str, stored: bool = False) -> None:
     origin = typing.get_origin(hint)
+    if origin not in (typing.Union, types.UnionType):
+        _refuse_tag(value, path, source)
     if origin in (typing.Union, types.UnionType):
         members = [m for m in typing.get_args(hint) if m is not type(None)]
         if value is None and len(members) < len(typing.get_args(hint)):
