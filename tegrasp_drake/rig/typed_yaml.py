@@ -13,6 +13,7 @@ import functools
 import math
 import os
 import pathlib
+import re
 import stat
 import sys
 import types
@@ -123,6 +124,10 @@ def optional_field(data: dict, name: str, source: str, absent):
 # A configuration is a few kB; these bound what a mistaken or hostile file can cost.
 MAX_YAML_BYTES = 1_000_000
 MAX_YAML_NODES = 100_000
+# The longest key YAML reads without `? ` before it (an implicit key: YAML 1.2.2, section
+# 7.4.2, "limited to 1024 Unicode characters"); past it PyYAML's scanner no longer takes the
+# text for a key and stops at its ':' with "mapping values are not allowed here".
+MAX_YAML_KEY_CHARS = 1024
 
 
 def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0,
@@ -145,8 +150,9 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
             _check_nodes(root, source, line_offset, column_offset, root_key)
         return construct(root)
     except yaml.YAMLError as e:
-        raise YamlSyntaxError(f"{source}: not valid YAML: "
-                              f"{_yaml_problem(e, line_offset, column_offset)}") from None
+        problem = (_over_long_key(text, e, line_offset)
+                   or _yaml_problem(e, line_offset, column_offset))
+        raise YamlSyntaxError(f"{source}: not valid YAML: {problem}") from None
     except RecursionError:
         raise ConfigError(f"{source}: the YAML nests deeper than Python's recursion limit "
                           f"({sys.getrecursionlimit()} levels); no configuration nests more "
@@ -216,6 +222,26 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
         return total
 
     size(root, "")
+
+
+def _over_long_key(text: str, error: yaml.YAMLError, line_offset: int = 0) -> str | None:
+    """For a YAML error at the ':' after a key longer than MAX_YAML_KEY_CHARS, that key's
+    line and length in words; None for any other error."""
+    mark = getattr(error, "problem_mark", None)
+    if mark is None:
+        return None
+    lines = text.splitlines()
+    line = lines[mark.line] if mark.line < len(lines) else ""
+    if line[mark.column:mark.column + 1] != ":":
+        return None
+    # the key: the text before the ':' after the indentation, a '- ' or '? ', or a flow
+    # collection's last '{', '[' or ','
+    before = re.sub(r"^\s*(?:[-?]\s+)*", "", line[:mark.column])
+    key = re.split(r"[{\[,]", before)[-1].strip()
+    if len(key) <= MAX_YAML_KEY_CHARS:
+        return None
+    return (f"line {mark.line + 1 - line_offset}: a key of {len(key)} characters; keys are at "
+            f"most {MAX_YAML_KEY_CHARS} characters")
 
 
 def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: int = 0) -> str:
