@@ -6,6 +6,7 @@ range (integer_text.py);
 `check_fields` names the first unknown, missing, mistyped, non-finite or null field by its
 dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
 
+import argparse
 import collections.abc
 import copy
 import dataclasses
@@ -263,6 +264,26 @@ def set_words(assignment: str) -> str:
     return f"--set '{shorten(key)}{equals}{shorten(text)}'"
 
 
+def assignment_problem(assignment: str) -> str | None:
+    """Why `assignment` is no `KEY=VALUE` with KEY a dotted field name, each of its names
+    given (not '', '.a', 'a..b' or 'a.'), in words that follow "--set 'ASSIGNMENT': "; None
+    if it is one."""
+    key, equals, _ = assignment.partition("=")
+    if not equals or any(not name.strip() for name in key.split(".")):
+        return "expected KEY=VALUE with KEY a dotted field name such as object.mass"
+    return None
+
+
+def set_option(text: str) -> str:
+    """argparse's type of --set: the assignment as given, or a usage error (exit 2) naming
+    it (assignment_problem); '' is left to the command line's refusal of empty values."""
+    problem = assignment_problem(text) if text else None
+    if problem:
+        # argparse puts "argument --set: " before it
+        raise argparse.ArgumentTypeError(f"{set_words(text).removeprefix('--set ')}: {problem}")
+    return text
+
+
 def assignment_key(assignment: str) -> str:
     """The dotted KEY of a `KEY=VALUE` assignment, as apply_override reads it."""
     return assignment.split("=", 1)[0].strip()
@@ -277,8 +298,9 @@ def keys_overlap(a: str, b: str) -> bool:
 
 def apply_override(data: dict, assignment: str) -> None:
     """Sets `key.sub=value` (YAML value) in nested YAML data."""
-    if "=" not in assignment:
-        raise ConfigError(f"{set_words(assignment)}: expected key=value, e.g. object.name=box")
+    problem = assignment_problem(assignment)
+    if problem:
+        raise ConfigError(f"{set_words(assignment)}: {problem}")
     key, text = assignment.split("=", 1)
     if not isinstance(data, dict):
         raise ConfigError(f"{set_words(assignment)}: the document it would change is "
