@@ -22,6 +22,7 @@ from concurrent.futures import ProcessPoolExecutor
 from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script, script_parser
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.files import JSON_ARRAY_START, write_atomically
+from tegrasp_drake.rig.typed_yaml import set_option
 
 MARKERS_M = ((0.0, 0.0), (0.01, 0.0), (0.0, 0.015), (-0.01, -0.015))
 
@@ -60,7 +61,8 @@ def main(argv=None) -> int:
     parser.add_argument("--seed", type=int, default=600)
     parser.add_argument("--workers", type=int, default=2)
     parser.add_argument("--set", dest="overrides", action="append", default=[],
-                        metavar="KEY=VALUE", help="override a scenario field of every trial")
+                        type=set_option, metavar="KEY=VALUE",
+                        help="override a scenario field of every trial")
     parser.add_argument("--json", type=pathlib.Path, default=None)
     args = parser.parse_args(argv)
     from tegrasp_drake.scenario.scenario import LoadScenario

@@ -17,6 +17,7 @@ from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.files import (absent_folders, folder_problem, interruptions_deferred,
                                      made_folders_removed_if_empty)
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
+from tegrasp_drake.rig.typed_yaml import set_option
 
 TEMPLATE_RUNS = 5  # recording/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
 MAX_ENSEMBLE_RUNS = 50  # each is an ideal grasp of about 20 s wall
@@ -58,8 +59,9 @@ def register(subparsers) -> None:
     parser.add_argument("--scenario-name", default=None,
                         help="which scenario of --scenario (its object is recorded)")
     parser.add_argument("--set", dest="overrides", action="append", default=[],
-                        metavar="KEY=VALUE", help="override a field of the scenario of "
-                        "each object recorded (repeatable)")
+                        type=set_option, metavar="KEY=VALUE",
+                        help="override a field of the scenario of each object recorded "
+                        "(repeatable)")
     parser.add_argument("--ensemble-runs", type=integer_option, default=None, metavar="N",
                         help="also record the taxel_aware controller's ensemble events from "
                         f"N randomised ideal grasps (default {TEMPLATE_RUNS} for your own "

@@ -8,7 +8,7 @@ from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file_cached
+from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file_cached, set_option
 
 
 def add_scenario_arguments(parser) -> None:
@@ -17,7 +17,7 @@ def add_scenario_arguments(parser) -> None:
     parser.add_argument("--scenario-name", default=DEFAULT_SCENARIO,
                         help="which scenario of the file (default: %(default)s)")
     parser.add_argument("--set", dest="overrides", action="append", default=[],
-                        metavar="KEY=VALUE",
+                        type=set_option, metavar="KEY=VALUE",
                         help="override a scenario field, e.g. --set object.name=thin_cylinder")
     parser.add_argument("--allow-long", action="store_true",
                         help="run a grasp script longer than 60 s of simulated time (refused "

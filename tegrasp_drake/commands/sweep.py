@@ -47,7 +47,7 @@ from tegrasp_drake.sweep.spec import (
     validate_spec,
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
-from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.rig.typed_yaml import ConfigError, set_option
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
 DEFAULT_OUT = "results/sweep"
@@ -113,7 +113,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="also save each trial's log (trial.npz format) in DIR, for "
                         "re-scoring offline (analysis/detection_quality.py)")
     parser.add_argument("--set", dest="overrides", action="append", default=[],
-                        metavar="KEY=VALUE",
+                        type=set_option, metavar="KEY=VALUE",
                         help="override a field of every trial's scenario, after the spec's "
                         "scenario_overrides, e.g. --set "
                         "controller.memorized_corrective.events=[hold_avoid]")

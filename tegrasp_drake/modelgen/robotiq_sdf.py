@@ -7,13 +7,12 @@ rig/taxel_layout.py is given. Pads are compliant hydroelastic boxes on rigid alu
 import numpy as np
 
 from tegrasp_drake.rig import materials
-from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
+from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z, PALM_Z
 from tegrasp_drake.modelgen.sdf_text import (box_inertia, friction_text, inertial_text, pose_text,
                                              translation)
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 
 BASE_RADIUS = 0.0375  # m, the datasheet's body about 75 mm across
-PALM_Z = 0.095  # m, mounting face to palm
 # [m] beyond the stroke, so full opening never strikes the limit (a false RA event)
 JOINT_LIMIT_MARGIN = 0.001
 BASE_MASS, FINGER_MASS = 0.80, 0.05  # kg, the datasheet's 0.9 kg in all

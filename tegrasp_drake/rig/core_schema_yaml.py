@@ -9,8 +9,8 @@ floats with or without a dot or an exponent (`1e-9`), and `true`/`false` (three 
 booleans; every other plain scalar is text (`yes`, `off`), which a numeric or true/false field
 then refuses by its type. Null keeps PyYAML's forms, the core schema's (`~`, `null`, empty).
 The data is then dumped for Drake's `yaml_load_typed`, which quotes a text `yes`. As Drake's
-`yaml_load` does, a tag `!Name` on a mapping adds `_tag: "!Name"` to it (a variant's type), and
-top-level keys starting with `_` (templates for aliases) are dropped."""
+`yaml_load` does, a tag `!Name` on a mapping adds `_tag: "!Name"` to it (a variant's type; a
+field that is no variant refuses it, typed_yaml.check_fields), and top-level keys starting with `_` (templates for aliases) are dropped."""
 
 import math
 import re

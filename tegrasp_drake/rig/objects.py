@@ -11,6 +11,8 @@ import re
 
 from tegrasp_drake.rig.api_boundary import TextPattern, public_dataclass
 from tegrasp_drake.rig import materials
+from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z, PALM_Z
 from tegrasp_drake.robotiq.units import STROKE_M
 from tegrasp_drake.rig.ranges import bounded, shorten
 from tegrasp_drake.rig.unset_fields import unset_when_empty
@@ -21,6 +23,19 @@ OBJECT_SIZES = {"box": ("x", "y", "z"), "cylinder": ("diameter", "height"),
 OBJECT_SHAPES = tuple(OBJECT_SIZES)
 FINGER_CLEARANCE_M = 0.0025  # smallest gap between an open pad and the object
 MAX_WIDTH_M = STROKE_M - 2 * FINGER_CLEARANCE_M  # widest object the open fingers clear
+
+
+def max_depth_m(width_m: float) -> float:
+    """The deepest object [m] along the approach the hand takes at width_m [m] along the
+    stroke. At the grasp the pads' centres close on the object's centre
+    (control/scripted_grasp.grasp_frame_xy), so its near half lies between them and the palm:
+    it must end FINGER_CLEARANCE_M short of the palm on either hand model, the prismatic
+    pads' centres PAD_CENTER_Z from the mounting face, the linkage's 130.7 mm open and up to
+    13.7 mm further as they close (robotiq/linkage.py), the palm at PALM_Z."""
+    linkage_pad_z = float(linkage.PAD_CENTER_OPEN[1]) + linkage.pad_travel_at_opening(width_m)
+    return 2 * (min(PAD_CENTER_Z, linkage_pad_z) - PALM_Z - FINGER_CLEARANCE_M)
+
+
 # The smallest extent [m] the contact geometry resolves: a primitive's rigid mesh has 5 mm facets
 # (simulation/object_model.py MESH_RESOLUTION_M), a pad's taxel is 20/3 x 24/4 mm
 # (rig/taxel_layout.py); a smaller object touches one facet of one taxel, and at 0.1 mm Drake
@@ -93,6 +108,10 @@ class ObjectConfig:
         """Extent along the finger stroke [m] (y of the object when placed on its marker)."""
         return self.size[0] if self.shape in ("cylinder", "file") else self.size[1]
 
+    def depth_along_approach(self) -> float:
+        """Extent along the approach [m] (x of the object when placed on its marker)."""
+        return self.size[1] if self.shape == "file" else self.size[0]
+
     def height(self) -> float:
         return self.size[1] if self.shape == "cylinder" else self.size[2]
 
@@ -129,6 +148,14 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
             f"makes the object {config.width_along_stroke() * 1000:.1f} mm wide along the "
             f"finger stroke, more than the {MAX_WIDTH_M * 1000:.1f} mm the 85 mm stroke "
             f"leaves with {FINGER_CLEARANCE_M * 1000:.1f} mm clearance per finger")
+    width = config.width_along_stroke()
+    depth, deepest = config.depth_along_approach(), max_depth_m(width)
+    if depth > deepest:
+        return "size", (
+            f"makes the object {depth * 1000:.1f} mm deep along the approach, more than the "
+            f"{deepest * 1000:.1f} mm the 2F-85 takes at a {width * 1000:.1f} mm width: grasped "
+            f"at its centre, its near half must end {FINGER_CLEARANCE_M * 1000:.1f} mm short "
+            "of the palm")
     for name, words in (("mass", "the object's mass [kg]"),
                         ("friction", "its Coulomb friction coefficient, e.g. 0.5 (a "
                                      "frictionless object cannot be held from the side)")):

@@ -6,6 +6,7 @@ range (integer_text.py);
 `check_fields` names the first unknown, missing, mistyped, non-finite or null field by its
 dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
 
+import argparse
 import collections.abc
 import copy
 import dataclasses
@@ -13,6 +14,7 @@ import functools
 import math
 import os
 import pathlib
+import re
 import stat
 import sys
 import types
@@ -123,6 +125,10 @@ def optional_field(data: dict, name: str, source: str, absent):
 # A configuration is a few kB; these bound what a mistaken or hostile file can cost.
 MAX_YAML_BYTES = 1_000_000
 MAX_YAML_NODES = 100_000
+# The longest key YAML reads without `? ` before it (an implicit key: YAML 1.2.2, section
+# 7.4.2, "limited to 1024 Unicode characters"); past it PyYAML's scanner no longer takes the
+# text for a key and stops at its ':' with "mapping values are not allowed here".
+MAX_YAML_KEY_CHARS = 1024
 
 
 def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: int = 0,
@@ -145,8 +151,9 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
             _check_nodes(root, source, line_offset, column_offset, root_key)
         return construct(root)
     except yaml.YAMLError as e:
-        raise YamlSyntaxError(f"{source}: not valid YAML: "
-                              f"{_yaml_problem(e, line_offset, column_offset)}") from None
+        problem = (_over_long_key(text, e, line_offset)
+                   or _yaml_problem(e, line_offset, column_offset))
+        raise YamlSyntaxError(f"{source}: not valid YAML: {problem}") from None
     except RecursionError:
         raise ConfigError(f"{source}: the YAML nests deeper than Python's recursion limit "
                           f"({sys.getrecursionlimit()} levels); no configuration nests more "
@@ -218,6 +225,26 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
     size(root, "")
 
 
+def _over_long_key(text: str, error: yaml.YAMLError, line_offset: int = 0) -> str | None:
+    """For a YAML error at the ':' after a key longer than MAX_YAML_KEY_CHARS, that key's
+    line and length in words; None for any other error."""
+    mark = getattr(error, "problem_mark", None)
+    if mark is None:
+        return None
+    lines = text.splitlines()
+    line = lines[mark.line] if mark.line < len(lines) else ""
+    if line[mark.column:mark.column + 1] != ":":
+        return None
+    # the key: the text before the ':' after the indentation, a '- ' or '? ', or a flow
+    # collection's last '{', '[' or ','
+    before = re.sub(r"^\s*(?:[-?]\s+)*", "", line[:mark.column])
+    key = re.split(r"[{\[,]", before)[-1].strip()
+    if len(key) <= MAX_YAML_KEY_CHARS:
+        return None
+    return (f"line {mark.line + 1 - line_offset}: a key of {len(key)} characters; keys are at "
+            f"most {MAX_YAML_KEY_CHARS} characters")
+
+
 def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: int = 0) -> str:
     """A YAML error in one line: what and where (line, column in the text given)."""
     mark = getattr(error, "problem_mark", None)
@@ -237,6 +264,26 @@ def set_words(assignment: str) -> str:
     return f"--set '{shorten(key)}{equals}{shorten(text)}'"
 
 
+def assignment_problem(assignment: str) -> str | None:
+    """Why `assignment` is no `KEY=VALUE` with KEY a dotted field name, each of its names
+    given (not '', '.a', 'a..b' or 'a.'), in words that follow "--set 'ASSIGNMENT': "; None
+    if it is one."""
+    key, equals, _ = assignment.partition("=")
+    if not equals or any(not name.strip() for name in key.split(".")):
+        return "expected KEY=VALUE with KEY a dotted field name such as object.mass"
+    return None
+
+
+def set_option(text: str) -> str:
+    """argparse's type of --set: the assignment as given, or a usage error (exit 2) naming
+    it (assignment_problem); '' is left to the command line's refusal of empty values."""
+    problem = assignment_problem(text) if text else None
+    if problem:
+        # argparse puts "argument --set: " before it
+        raise argparse.ArgumentTypeError(f"{set_words(text).removeprefix('--set ')}: {problem}")
+    return text
+
+
 def assignment_key(assignment: str) -> str:
     """The dotted KEY of a `KEY=VALUE` assignment, as apply_override reads it."""
     return assignment.split("=", 1)[0].strip()
@@ -251,8 +298,9 @@ def keys_overlap(a: str, b: str) -> bool:
 
 def apply_override(data: dict, assignment: str) -> None:
     """Sets `key.sub=value` (YAML value) in nested YAML data."""
-    if "=" not in assignment:
-        raise ConfigError(f"{set_words(assignment)}: expected key=value, e.g. object.name=box")
+    problem = assignment_problem(assignment)
+    if problem:
+        raise ConfigError(f"{set_words(assignment)}: {problem}")
     key, text = assignment.split("=", 1)
     if not isinstance(data, dict):
         raise ConfigError(f"{set_words(assignment)}: the document it would change is "
@@ -294,6 +342,7 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
     tagged Unions; Drake's config classes are checked by Drake). `stored`: the text this
     package wrote (a log's or an event's scenario), whose empty "not set" fields are read as
     not set: versions before scenario_to_yaml dropped them wrote them; a user's are refused."""
+    _refuse_tag(data, where, source)
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         _check_finite_numbers(data, source, where)
@@ -483,8 +532,18 @@ def require(condition: bool, source: str, path: str, words: str, value) -> None:
         raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
 
 
+def _refuse_tag(value, path: str, source: str) -> None:
+    """ConfigError if `value` is a mapping a YAML tag marks (core_schema_yaml adds its
+    `_tag`) where no tag selects a variant (a Union of config classes consumes its own)."""
+    if isinstance(value, dict) and "_tag" in value:
+        words = f"a YAML tag ({shorten(str(value['_tag']))}) is not allowed here; remove it"
+        raise ConfigError(f"{source}: field '{path}': {words}" if path else f"{source}: {words}")
+
+
 def _check_value(value, hint, path: str, source: str, stored: bool = False) -> None:
     origin = typing.get_origin(hint)
+    if origin not in (typing.Union, types.UnionType):
+        _refuse_tag(value, path, source)
     if origin in (typing.Union, types.UnionType):
         members = [m for m in typing.get_args(hint) if m is not type(None)]
         if value is None and len(members) < len(typing.get_args(hint)):

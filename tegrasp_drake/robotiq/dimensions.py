@@ -7,3 +7,4 @@ from tegrasp_drake.robotiq.units import STROKE_M
 # ~0.16 m fingertip
 PAD_CENTER_Z = 0.140
 HALF_STROKE = STROKE_M / 2  # a pad face from the grasp axis, open
+PALM_Z = 0.095  # mounting face to palm; both hand models' palm box ends here

@@ -20,7 +20,9 @@ from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
-from tegrasp_drake.rig.typed_yaml import ConfigError, assignment_key, keys_overlap
+from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
+                                          keys_overlap)
 
 # The paper's three objects (Fig. 8a); a spec can add its own (`user_objects`).
 BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
@@ -300,9 +302,9 @@ def _check_scenario_overrides(assignments, controllers, fail):
     from tegrasp_drake.scenario.scenario import LoadScenario
     for k, assignment in enumerate(assignments):
         field_name = f"scenario_overrides[{k}]"
-        if not isinstance(assignment, str) or "=" not in assignment:
-            fail(field_name, f"expected 'key=value' (as `tegrasp trial --set`), got "
-                             f"{assignment!r}")
+        if not isinstance(assignment, str) or assignment_problem(assignment):
+            fail(field_name, f"expected 'key=value' (as `tegrasp trial --set`), key a dotted "
+                             f"field name such as object.mass, got {shorten(repr(assignment))}")
         key = assignment_key(assignment)
         for per_trial in PER_TRIAL_SCENARIO_FIELDS:
             if keys_overlap(key, per_trial):

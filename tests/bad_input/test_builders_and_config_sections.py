@@ -124,6 +124,18 @@ def test_builders_recheck_an_object_a_script_changed(name, size, words):
         MakeGraspDiagram(scenario)
 
 
+def test_builders_recheck_an_object_a_script_made_deeper_than_the_hand_takes():
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.grasp_diagram import MakeGraspDiagram
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    scenario = LoadScenario(name="box")
+    scenario.object.size = [0.3, 0.045, 0.11]
+    with pytest.raises(ConfigError, match="MakeGraspDiagram: scenario: field 'object.size' "
+                                          "makes the object 300.0 mm deep along the approach, "
+                                          "more than the 85.0 mm"):
+        MakeGraspDiagram(scenario)
+
+
 def test_a_recheck_keeps_a_built_in_object_with_sizes_the_user_set_and_resolves_a_bare_one():
     from tegrasp_drake.scenario.scenario import LoadScenario, Scenario, rechecked
     loaded = LoadScenario(name="box", overrides=["object.size=[0.05,0.05,0.1]"])

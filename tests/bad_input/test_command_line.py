@@ -431,6 +431,31 @@ def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, wo
     assert "--help" not in text, text
 
 
+# Rule: a --set that is no KEY=VALUE with KEY a dotted field name (an empty key or name, no
+# '=') is a command line that does not parse, refused as `--set ''` is, with exit code 2.
+@pytest.mark.parametrize("command", ["trial", "record-events", "sweep"])
+@pytest.mark.parametrize("assignment", ["=", "=0.2", ".object.mass=0.2", "object..mass=0.2",
+                                        "object.=0.2", " =0.2", "object.mass"])
+def test_a_malformed_set_is_refused_as_a_command_line_that_does_not_parse(command, assignment,
+                                                                          capfd):
+    code, text = run_cli([command, "--set", assignment], capfd)
+    assert code == 2, text
+    assert text.count("\n") == 1 and "unknown field" not in text, text
+    assert text.startswith(
+        f"tegrasp {command}: error: argument --set: '{assignment}': expected KEY=VALUE with KEY "
+        "a dotted field name such as object.mass (see "), text
+
+
+def test_an_empty_set_keeps_its_own_refusal_and_code(capfd):
+    code, text = run_cli(["trial", "--set", ""], capfd)
+    assert code == 2 and "--set '' is empty" in text, text
+
+
+def test_a_malformed_assignment_given_to_the_api_is_named_the_same_way():
+    refusal(lambda: T.LoadScenario(overrides=["=0.2"]),
+            "--set '=0.2': expected KEY=VALUE with KEY a dotted field name such as object.mass")
+
+
 # Rule: the package's standalone docs commands refuse a command line as `tegrasp` does.
 @pytest.mark.parametrize("main, argv, words", [
     ("tegrasp_drake.control.rule_docs", ["--bogus"],

@@ -1,10 +1,12 @@
 """Settings each within its own range that contradict another setting are refused at load,
-in one line naming both: a Lift-Load cap below the grip it raises, and a scripted or
-corrective move faster than the arm can follow."""
+in one line naming both: a Lift-Load cap below the grip it raises, a scripted or
+corrective move faster than the arm can follow, and an object deeper than the hand takes at
+its width."""
 
 import pytest
 
 import tegrasp_drake as T
+from tegrasp_drake.rig.objects import max_depth_m
 from tests.bad_input.probes import refusal
 
 
@@ -57,3 +59,26 @@ def test_a_zero_length_move_may_take_no_time():
                               overrides=["controller.avoid.distance_m=0",
                                          "controller.avoid.move_s=0"])
     assert scenario.controller.avoid.move_s == 0
+
+
+@pytest.mark.parametrize("overrides, words", [
+    (["object.size=[0.3, 0.045, 0.11]"], "300.0 mm deep along the approach, more than the 85.0 mm"),
+    (["object.name=crate", "object.shape=box", "object.size=[0.075, 0.08, 0.1]",
+      "object.mass=0.1", "object.friction=0.5"], "75.0 mm deep along the approach"),
+    (["object.name=drum", "object.shape=cylinder", "object.size=[0.08, 0.1]",
+      "object.mass=0.1", "object.friction=0.5"], "80.0 mm deep along the approach"),
+])
+def test_an_object_deeper_than_the_hand_takes_is_refused_naming_its_size(overrides, words):
+    """Grasped at its centre, an object deeper than twice the pads' reach in front of the palm
+    would strike the palm: refused before it is simulated, naming the limit at its width."""
+    refusal(lambda: T.LoadScenario(name="box", overrides=overrides),
+            "field 'object.size'", words, "short of the palm")
+
+
+def test_the_deepest_object_the_hand_takes_loads():
+    """The refusal's limit is the one the check applies: an object that deep loads."""
+    deepest = max_depth_m(0.08)
+    scenario = T.LoadScenario(name="box", overrides=[
+        "object.name=crate", "object.shape=box", f"object.size=[{deepest}, 0.08, 0.1]",
+        "object.mass=0.1", "object.friction=0.5"])
+    assert scenario.object.size[0] == deepest

@@ -1,7 +1,8 @@
 """Scenario files and --set values as YAML and JSON: one safe reader refuses syntax errors,
 binary files, duplicate or merged keys, YAML 1.1 booleans, nesting too deep, nulls and empty
-values the user gave, in one line naming the file and field; a built-in name given as a
-file, a file without a field, or a stored scenario read back are named for what they are."""
+values the user gave, a YAML tag where no variant is chosen, a key past YAML's 1024
+characters, in one line naming the file and field; a built-in name given as a file, a file
+without a field, or a stored scenario read back are named for what they are."""
 
 import pytest
 
@@ -183,6 +184,56 @@ def test_two_merge_keys_in_one_mapping_are_refused(tmp_path):
                       "  <<: [{random_seed: 681}, {object: {name: thin_cylinder}}]\n")
     scenario = LoadScenario(str(listed), "other")
     assert scenario.random_seed == 681 and scenario.object.name == "thin_cylinder"
+
+
+@pytest.mark.parametrize("entry, expected", [
+    ("  object: !ObjectConfig {mass: 0.1}\n",
+     "field 'object': a YAML tag (!ObjectConfig) is not allowed here; remove it"),
+    ("  object: !Nonsense {mass: 0.1}\n",
+     "field 'object': a YAML tag (!Nonsense) is not allowed here; remove it"),
+    ("  object: {mass: !Nonsense {a: 1}}\n",
+     "field 'object.mass': a YAML tag (!Nonsense) is not allowed here; remove it"),
+    ("  plant_config: !Nonsense {time_step: 0.001}\n",
+     "field 'plant_config': a YAML tag (!Nonsense) is not allowed here; remove it"),
+])
+def test_a_yaml_tag_where_no_variant_is_chosen_is_refused_naming_its_field(entry, expected,
+                                                                            tmp_path, capfd):
+    scenario = tmp_path / "tagged.yaml"
+    scenario.write_text("mine:\n" + entry)
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, text, str(scenario), expected)
+    assert "unknown field" not in text
+
+
+def test_a_yaml_tag_still_chooses_the_controller(tmp_path):
+    scenario = tmp_path / "tagged.yaml"
+    scenario.write_text("mine:\n  controller: !TaxelAwareControllerConfig {}\n")
+    assert LoadScenario(scenario, "mine").controller.name == "taxel_aware"
+
+
+@pytest.mark.parametrize("entry, length", [
+    ("  " + "k" * 500_000 + ": 1\n", 500_000),
+    ("  object: {mass: 0.1, " + "k" * 2000 + ": 1}\n", 2000),
+    ("  - " + "k" * 1025 + ": 1\n", 1025),
+])
+def test_a_key_past_yamls_1024_characters_is_named_by_its_length(entry, length, tmp_path,
+                                                                  capfd):
+    scenario = tmp_path / "long_key.yaml"
+    scenario.write_text("mine:\n" + entry)
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, text, str(scenario), f"line 2: a key of {length} characters; "
+                          "keys are at most 1024 characters")
+    assert len(text) < 400, text
+
+
+def test_a_key_of_1024_characters_is_read(tmp_path, capfd):
+    scenario = tmp_path / "long_key.yaml"
+    scenario.write_text("mine:\n  " + "k" * 1024 + ": 1\n")
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, text, "unknown field")
 
 
 def test_yaml_nested_too_deeply_says_the_limit_and_what_to_give(tmp_path, capfd):

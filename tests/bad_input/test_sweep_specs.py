@@ -17,6 +17,9 @@ from tests.bad_input.probes import SEED, assert_one_line_error, one_line_of, ref
 @pytest.mark.parametrize("definition, expected", [
     ("{shape: box, size: [0.04, 0.09, 0.1], mass: 0.1, friction: 0.5}",
      "field 'user_objects.crate.size': makes the object 90.0 mm wide"),
+    ("{shape: box, size: [0.2, 0.04, 0.1], mass: 0.1, friction: 0.5}",
+     "field 'user_objects.crate.size': makes the object 200.0 mm deep along the approach, "
+     "more than the 85.0 mm"),
     ("{shape: cylinder, size: [0.04, 0.1], mass: 0.1}",
      "field 'user_objects.crate.friction': is missing"),
     ("{shape: cylinder, size_m: [0.04, 0.1], mass_kg: 0.1, friction_coefficient: 0.5}",
