@@ -367,7 +367,6 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
             "confirm with --allow-long (LoadScenario(..., allow_long=True))")
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario, source)
-    _check_hand_speeds(scenario, source)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
     if problem:
         field, words, value = problem
@@ -392,6 +391,7 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
                               f"'grasp.grasp_height' put the side grasp out of the JACO2's "
                               f"reach ({problem}), which the carriage's impedance (station.arm "
                               "carriage) is taken at: choose a marker in front of the arm")
+    _check_hand_speeds(scenario, source)  # at poses the checks above found in reach
     return scenario
 
 
