@@ -64,25 +64,25 @@ def _speed_plant():
     return make_arm_control_plant()  # one, read through a context per call
 
 
-MOVE_SAMPLES = 3  # a straight move's start, middle and end
+MOVE_SAMPLES = 11  # poses along a straight move, its start and end among them
 
 
 @functools.lru_cache(maxsize=1024)
-def _move_top_speed(start: tuple, end: tuple, directions: tuple) -> float | None:
+def _move_top_speeds(start: tuple, end: tuple, directions: tuple) -> tuple | None:
     plant = _speed_plant()
     context = plant.CreateDefaultContext()
     q = _start_joints(start)  # as the station solves it; the rest followed from there
     if q is None:
         return None
-    top = np.inf
+    tops = []
     for i, tau in enumerate(np.linspace(0.0, 1.0, MOVE_SAMPLES)):
         if i:
             q = _follow(plant, context, q, np.add(start, tau * np.subtract(end, start)))
             if q is None:
                 return None
         J = grasp_frame_jacobian(plant, context, q)
-        top = min(top, *(hand_top_speed_mps(J, d) for d in directions))
-    return top
+        tops.append((float(tau), min(hand_top_speed_mps(J, d) for d in directions)))
+    return tuple(tops)
 
 
 @functools.lru_cache(maxsize=256)
@@ -112,23 +112,23 @@ def _follow(plant, context, q, p_WG, iterations=30):
     return None
 
 
-def move_top_speed_mps(start_xyz, end_xyz, directions=None) -> float | None:
-    """The fastest [m/s] the differential IK can move the grasp frame, in the side grasp's
-    orientation, along a straight move from start_xyz to end_xyz [m, world]: the least of
-    hand_top_speed_mps over the move's start, middle and end (MOVE_SAMPLES poses; the arm's
-    joints at the start as the station solves them, followed along the move as the IK
-    follows it) and over `directions` (world; default the move's own). Over the script's
-    and the controller's moves at the defaults (a few cm each) the top speed changes by
-    under 0.3 % between 3 and 11 poses sampled. None when the arm cannot put the hand at a
-    pose of the move. Cached per move: scenarios load thousands of times, most alike."""
+def move_top_speeds_mps(start_xyz, end_xyz, directions=None) -> tuple | None:
+    """((tau, top speed [m/s]), ...) along a straight move of the grasp frame, in the side
+    grasp's orientation, from start_xyz to end_xyz [m, world]: at MOVE_SAMPLES poses evenly
+    along it (tau 0 to 1), the fastest the differential IK can move the hand there
+    (hand_top_speed_mps, the least over `directions`, world; default the move's own), the
+    arm's joints at the start as the station solves them and followed along the move as
+    the IK follows it. The top speed changes along a move (toward the start pose the wrist
+    nears its singularity); a move the arm follows asks at each pose at most its top speed
+    there. None when the arm cannot put the hand at a pose of the move. Cached per move:
+    scenarios load thousands of times, most alike."""
     key = lambda xyz: tuple(round(float(v), 7) for v in xyz)
     if directions is None:
         step = np.subtract(end_xyz, start_xyz, dtype=float)
         if not np.any(step):
             return None
         directions = (step / np.linalg.norm(step),)
-    return _move_top_speed(key(start_xyz), key(end_xyz),
-                           tuple(key(d) for d in directions))
+    return _move_top_speeds(key(start_xyz), key(end_xyz), tuple(key(d) for d in directions))
 
 
 def AddCartesianArmController(builder, *, position_measured, velocity_measured,

@@ -231,11 +231,10 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
                 "no hit)", disturbance.hit_time_s)
 
 
-# Avoid moves along the stroke (y; either way: a pose's top speed is the same both ways) or
-# up, or along a hit's horizontal push (any horizontal way, known only once the hit comes).
-# Checked along the first two; along the push the defaults' Avoid is faster than the arm
-# there (docs/model.md, "What each setting may be").
-AVOID_DIRECTIONS = ((0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+# Avoid moves along the stroke (y, either way) or up, or along a hit's horizontal push (any
+# horizontal way, known only once the hit comes). Checked along the first three; along the
+# push the defaults' Avoid is faster than the arm (docs/model.md, "What each setting may be").
+AVOID_DIRECTIONS = ((0.0, 1.0, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, 1.0))
 
 
 def _hand_moves(scenario: Scenario):
@@ -273,28 +272,32 @@ def _hand_moves(scenario: Scenario):
 
 
 def _check_hand_speeds(scenario: Scenario, source: str) -> None:
-    """Each arm move's peak speed against the fastest the arm can move the hand along it
-    where it happens (cartesian_arm_controller.move_top_speed_mps: its joints at their speed
-    limits, the hand's orientation held): a faster one leaves the differential IK behind,
-    the arm lags its command and the trial would not do what its script says."""
+    """Each arm move against the fastest the arm can move the hand along it where it is
+    (cartesian_arm_controller.move_top_speeds_mps: its joints at their speed limits, the
+    hand's orientation held), pose by pose along its path: a move asking more somewhere
+    leaves the differential IK behind, the arm lags its command and the trial would not do
+    what its script says."""
     # every arm move, scripted or corrective, follows the minimum-jerk profile
-    from tegrasp_drake.control.cartesian_arm_controller import move_top_speed_mps
-    from tegrasp_drake.control.motion_profiles import MINIMUM_JERK_PEAK_SPEED
+    from tegrasp_drake.control.cartesian_arm_controller import move_top_speeds_mps
+    from tegrasp_drake.control.motion_profiles import (MINIMUM_JERK_PEAK_SPEED,
+                                                       minimum_jerk_slope)
     for field, distance, duration, what, paths in _hand_moves(scenario):
-        peak_distance = MINIMUM_JERK_PEAK_SPEED * distance
         if distance <= 0:
             continue
-        tops = [move_top_speed_mps(start, end) for start, end in paths]
-        tops = [top for top in tops if top is not None]  # a pose out of reach: no speed
-        limit = min(tops, default=math.inf)
-        if peak_distance > limit * duration:
+        shortest, binding = 0.0, math.inf  # [s], the top speed [m/s] where it binds
+        for start, end in paths:
+            for tau, top in move_top_speeds_mps(start, end) or ():  # None: out of reach
+                needed = distance * minimum_jerk_slope(tau) / top
+                if needed > shortest:
+                    shortest, binding = needed, top
+        if duration < shortest:
             require(False, source, field,
                     f"is too short to move the hand {distance * 1000:.0f} mm ({what}): its "
-                    f"minimum-jerk move peaks at {peak_distance / duration:.3g} m/s, "
-                    f"more than the JACO2 can move it that way there, its orientation held "
-                    f"({limit:.3g} m/s); give it at least "
-                    f"{math.ceil(peak_distance / limit * 1000) / 1000:g} s",
-                    duration)
+                    f"minimum-jerk move peaks at "
+                    f"{MINIMUM_JERK_PEAK_SPEED * distance / duration:.3g} m/s, more than the "
+                    f"JACO2 can move it along its path, its orientation held ({binding:.3g} "
+                    f"m/s where it binds); give it at least "
+                    f"{math.ceil(shortest * 1000) / 1000:g} s", duration)
 
 
 def script_duration(scenario: Scenario) -> float:
