@@ -1,6 +1,8 @@
 """Cartesian arm control: X_WG_desired to `arm.desired_state` (the port the simulated
 station and the Jaco driver take), by Drake's DifferentialInverseKinematicsIntegrator within
-the JACO2's joint limits and a DiscreteDerivative for the velocities."""
+the JACO2's joint limits and a DiscreteDerivative for the velocities; and the fastest that
+IK can move the hand along a move (move_top_speeds_mps), which a scenario's moves are
+checked against."""
 
 import functools
 
@@ -12,7 +14,8 @@ from pydrake.multibody.inverse_kinematics import (DifferentialInverseKinematicsI
 from pydrake.systems.primitives import DiscreteDerivative, Multiplexer
 from scipy.optimize import linprog
 
-from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP, make_arm_control_plant
+from tegrasp_drake.rig.arm_kinematics import (R_WG_SIDE_GRASP, UnreachablePoseError,
+                                              make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.modelgen import jaco2_dh
 
 JOINT_SPEED_MARGIN = 0.9  # use at most 90 % of each joint's published top speed
@@ -87,7 +90,6 @@ def _move_top_speeds(start: tuple, end: tuple, directions: tuple) -> tuple | Non
 
 @functools.lru_cache(maxsize=256)
 def _start_joints(start: tuple) -> np.ndarray | None:
-    from tegrasp_drake.rig.arm_kinematics import solve_grasp_frame_ik, UnreachablePoseError
     try:
         return solve_grasp_frame_ik(_speed_plant(), RigidTransform(R_WG_SIDE_GRASP, start))
     except UnreachablePoseError:
