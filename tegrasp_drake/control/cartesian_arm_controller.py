@@ -1,15 +1,22 @@
 """Cartesian arm control: X_WG_desired to `arm.desired_state` (the port the simulated
 station and the Jaco driver take), by Drake's DifferentialInverseKinematicsIntegrator within
-the JACO2's joint limits and a DiscreteDerivative for the velocities."""
+the JACO2's joint limits and a DiscreteDerivative for the velocities; and the fastest that
+IK can move the hand along a move (move_top_speeds_mps), which a scenario's moves are
+checked against."""
+
+import functools
 
 import numpy as np
+from pydrake.math import RigidTransform
+from pydrake.multibody.tree import JacobianWrtVariable
 from pydrake.multibody.inverse_kinematics import (DifferentialInverseKinematicsIntegrator,
                                                   DifferentialInverseKinematicsParameters)
 from pydrake.systems.primitives import DiscreteDerivative, Multiplexer
+from scipy.optimize import linprog
 
-from tegrasp_drake.rig.arm_kinematics import make_arm_control_plant
+from tegrasp_drake.rig.arm_kinematics import (R_WG_SIDE_GRASP, UnreachablePoseError,
+                                              make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.modelgen import jaco2_dh
-from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_REACH_M
 
 JOINT_SPEED_MARGIN = 0.9  # use at most 90 % of each joint's published top speed
 
@@ -22,14 +29,108 @@ def jaco_joint_limits():
     return lower, upper, speed
 
 
-def max_hand_speed_mps() -> float:
-    """The fastest [m/s] the differential IK can move the grasp frame, bounded from above:
-    a joint turning at w moves the frame at w times its distance from the joint's axis, at
-    most the JACO2's reach (JACO2_REACH_M, 0.9 m, Kinova's specification), and the frame's
-    speed is at most the sum over the six joints, each at its limit here (90 % of the
-    published 36 deg/s of joints 1-3 and 48 deg/s of joints 4-6): 3.56 m/s. A bound, not
-    what every pose reaches: a move asking more is one the arm cannot follow anywhere."""
-    return float(np.sum(jaco_joint_limits()[2]) * JACO2_REACH_M)
+def grasp_frame_jacobian(plant, context, q: np.ndarray) -> np.ndarray:
+    """J(q): the grasp frame's spatial velocity in the world ([angular; translational]) per
+    joint speed [rad/s], of `plant` (make_arm_control_plant) at joint angles q [rad]."""
+    plant.SetPositions(context, q)
+    return plant.CalcJacobianSpatialVelocity(
+        context, JacobianWrtVariable.kV, plant.GetFrameByName("grasp_frame"),
+        [0.0, 0.0, 0.0], plant.world_frame(), plant.world_frame())
+
+
+def hand_top_speed_mps(J: np.ndarray, direction, speed_limits=None) -> float:
+    """The fastest [m/s] the differential IK can move the grasp frame along `direction`
+    (world, any length) with its orientation held (as the IK holds it), J the frame's
+    Jacobian (grasp_frame_jacobian): the largest v with J qdot = [0 angular; v d] for some
+    |qdot_i| at most the joints' speed limits (default jaco_joint_limits', 90 % of the
+    published), a linear program over (qdot, v). Where J is invertible qdot = v J^-1 [0; d]
+    is the only solution and the program's optimum is the least of w_i / |(J^-1 [0; d])_i|
+    (the joint reaching its limit first), taken directly; it is solved (linprog) only near a
+    singularity."""
+    d = np.asarray(direction, dtype=float)
+    d = d / np.linalg.norm(d)
+    w = jaco_joint_limits()[2] if speed_limits is None else np.asarray(speed_limits, float)
+    twist = np.concatenate([np.zeros(3), d])
+    if np.linalg.cond(J) < 1e8:
+        rates = np.abs(np.linalg.solve(J, twist))
+        return float(np.min(w[rates > 0] / rates[rates > 0])) if np.any(rates > 0) else np.inf
+    result = linprog(np.r_[np.zeros(len(w)), -1.0], A_eq=np.hstack([J, -twist[:, None]]),
+                     b_eq=np.zeros(6), bounds=[(-x, x) for x in w] + [(0.0, None)],
+                     method="highs")
+    if result.status == 3:  # unbounded: the hand moves that way with no joint turning
+        return np.inf
+    return float(result.x[-1]) if result.success else 0.0
+
+
+@functools.lru_cache(maxsize=1)
+def _speed_plant():
+    return make_arm_control_plant()  # one, read through a context per call
+
+
+MOVE_SAMPLES = 11  # poses along a straight move, its start and end among them
+
+
+@functools.lru_cache(maxsize=1024)
+def _move_top_speeds(start: tuple, end: tuple, directions: tuple) -> tuple | None:
+    plant = _speed_plant()
+    context = plant.CreateDefaultContext()
+    q = _start_joints(start)  # as the station solves it; the rest followed from there
+    if q is None:
+        return None
+    tops = []
+    for i, tau in enumerate(np.linspace(0.0, 1.0, MOVE_SAMPLES)):
+        if i:
+            q = _follow(plant, context, q, np.add(start, tau * np.subtract(end, start)))
+            if q is None:
+                return None
+        J = grasp_frame_jacobian(plant, context, q)
+        tops.append((float(tau), min(hand_top_speed_mps(J, d) for d in directions)))
+    return tuple(tops)
+
+
+@functools.lru_cache(maxsize=256)
+def _start_joints(start: tuple) -> np.ndarray | None:
+    try:
+        return solve_grasp_frame_ik(_speed_plant(), RigidTransform(R_WG_SIDE_GRASP, start))
+    except UnreachablePoseError:
+        return None
+
+
+def _follow(plant, context, q, p_WG, iterations=30):
+    """Joint angles near q [rad] putting the grasp frame at p_WG [m] in the side grasp's
+    orientation (Newton's method from q, the branch the differential IK stays on); None if
+    it does not converge (out of reach)."""
+    frame = plant.GetFrameByName("grasp_frame")
+    q = np.array(q, dtype=float)
+    for _ in range(iterations):
+        plant.SetPositions(context, q)
+        X = plant.CalcRelativeTransform(context, plant.world_frame(), frame)
+        turn = (R_WG_SIDE_GRASP @ X.rotation().inverse()).ToAngleAxis()
+        error = np.concatenate([turn.angle() * turn.axis(), p_WG - X.translation()])
+        if np.linalg.norm(error) < 1e-10:
+            return q
+        q = q + np.linalg.lstsq(grasp_frame_jacobian(plant, context, q), error,
+                                rcond=None)[0]
+    return None
+
+
+def move_top_speeds_mps(start_xyz, end_xyz, directions=None) -> tuple | None:
+    """((tau, top speed [m/s]), ...) along a straight move of the grasp frame, in the side
+    grasp's orientation, from start_xyz to end_xyz [m, world]: at MOVE_SAMPLES poses evenly
+    along it (tau 0 to 1), the fastest the differential IK can move the hand there
+    (hand_top_speed_mps, the least over `directions`, world; default the move's own), the
+    arm's joints at the start as the station solves them and followed along the move as
+    the IK follows it. The top speed changes along a move (toward the start pose the wrist
+    nears its singularity); a move the arm follows asks at each pose at most its top speed
+    there. None when the arm cannot put the hand at a pose of the move. Cached per move:
+    scenarios load thousands of times, most alike."""
+    key = lambda xyz: tuple(round(float(v), 7) for v in xyz)
+    if directions is None:
+        step = np.subtract(end_xyz, start_xyz, dtype=float)
+        if not np.any(step):
+            return None
+        directions = (step / np.linalg.norm(step),)
+    return _move_top_speeds(key(start_xyz), key(end_xyz), tuple(key(d) for d in directions))
 
 
 def AddCartesianArmController(builder, *, position_measured, velocity_measured,

@@ -19,6 +19,13 @@ def minimum_jerk(tau):
 MINIMUM_JERK_PEAK_SPEED = 15.0 / 8.0
 
 
+def minimum_jerk_slope(tau):
+    """ds/dtau = 30 tau^2 (1 - tau)^2 of minimum_jerk, 0 outside [0, 1]: a move of d metres
+    over T seconds asks d / T times this of the hand at tau."""
+    tau = min(max(tau, 0.0), 1.0) if isinstance(tau, float) else np.clip(tau, 0.0, 1.0)
+    return 30.0 * tau ** 2 * (1.0 - tau) ** 2
+
+
 def interpolate_pose(X_start: RigidTransform, X_end: RigidTransform, s: float) -> RigidTransform:
     """The pose a fraction s of the way from X_start to X_end (straight line, slerp)."""
     q0 = X_start.rotation().ToQuaternion()

@@ -231,48 +231,73 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
                 "no hit)", disturbance.hit_time_s)
 
 
+# Avoid moves along the stroke (y, either way) or up, or along a hit's horizontal push (any
+# horizontal way, known only once the hit comes). Checked along the first three; along the
+# push the defaults' Avoid is faster than the arm (docs/model.md, "What each setting may be").
+AVOID_DIRECTIONS = ((0.0, 1.0, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, 1.0))
+
+
 def _hand_moves(scenario: Scenario):
-    """(duration field, distance [m], duration [s], what moves) of each arm move the trial
-    may ask: each phase of the grasp script, and the closed-loop controller's own moves
-    (Avoid's, a Re-Reach's shift of at most half the stroke as the paper's, the retract
-    after Unload)."""
+    """(duration field, distance [m], duration [s], what moves, paths) of each arm move the
+    trial may ask: each phase of the grasp script, and the closed-loop controller's own moves
+    (Avoid's from the lifted pose, a Re-Reach's shift along the stroke of at most half of it
+    as the paper's at the grasp pose, the retract after Unload from the placed pose). paths:
+    the straight moves ((start, end) [m, world]) it may take; the arm must follow each."""
     from tegrasp_drake.control.scripted_grasp import plan_scripted_grasp
     from tegrasp_drake.robotiq.units import STROKE_M
+    at = {}
     for segment in plan_scripted_grasp(grasp_plan(scenario)):
-        distance = float(np.linalg.norm(segment.X_end.translation()
-                                        - segment.X_start.translation()))
-        yield (f"grasp.{segment.phase}_s", distance,
+        start, end = segment.X_start.translation(), segment.X_end.translation()
+        at[segment.phase] = end
+        yield (f"grasp.{segment.phase}_s", float(np.linalg.norm(end - start)),
                getattr(scenario.grasp, f"{segment.phase}_s"),
-               f"the {segment.phase.capitalize()} phase")
+               f"the {segment.phase.capitalize()} phase", [(start, end)])
     controller = scenario.controller
     if not controller_entry(controller).closed_loop:
         return
-    yield ("controller.avoid.move_s", controller.avoid.distance_m, controller.avoid.move_s,
-           "Avoid, controller.avoid.distance_m")
+    avoid = controller.avoid.distance_m
+    yield ("controller.avoid.move_s", avoid, controller.avoid.move_s,
+           "Avoid, controller.avoid.distance_m",
+           [(at["lift"], at["lift"] + np.multiply(avoid, d)) for d in AVOID_DIRECTIONS])
+    shift = np.array([0.0, STROKE_M / 2, 0.0])
     yield ("controller.re_reach.move_s", STROKE_M / 2, controller.re_reach.move_s,
-           "a Re-Reach's shift, up to half the 85 mm stroke")
-    yield ("grasp.retract_s", scenario.grasp.retract_distance, scenario.grasp.retract_s,
-           "the retract after Unload, grasp.retract_distance")
+           "a Re-Reach's shift, up to half the 85 mm stroke",
+           [(at["reach"], at["reach"] + shift), (at["reach"], at["reach"] - shift)])
+    placed, start_xyz = at["place"], scenario.arm.initial_gripper_xyz
+    retracted = np.array([max(placed[0] - scenario.grasp.retract_distance, start_xyz[0]),
+                          placed[1], start_xyz[2]])  # as the state machine's retract
+    yield ("grasp.retract_s", float(np.linalg.norm(retracted - placed)),
+           scenario.grasp.retract_s, "the retract after Unload, grasp.retract_distance",
+           [(placed, retracted)])
 
 
 def _check_hand_speeds(scenario: Scenario, source: str) -> None:
-    """Each arm move's peak speed against the most the arm can follow
-    (cartesian_arm_controller.max_hand_speed_mps): a faster one leaves the differential IK
-    behind ("stuck") and the trial would not do what its script says."""
+    """Each arm move against the fastest the arm can move the hand along it where it is
+    (cartesian_arm_controller.move_top_speeds_mps: its joints at their speed limits, the
+    hand's orientation held), pose by pose along its path: a move asking more somewhere
+    leaves the differential IK behind, the arm lags its command and the trial would not do
+    what its script says."""
     # every arm move, scripted or corrective, follows the minimum-jerk profile
-    from tegrasp_drake.control.cartesian_arm_controller import max_hand_speed_mps
-    from tegrasp_drake.control.motion_profiles import MINIMUM_JERK_PEAK_SPEED
-    from tegrasp_drake.rig.jaco_velocity_tracker import JACO2_REACH_M
-    limit = max_hand_speed_mps()
-    for field, distance, duration, what in _hand_moves(scenario):
-        peak_distance = MINIMUM_JERK_PEAK_SPEED * distance
-        if distance > 0 and peak_distance > limit * duration:
+    from tegrasp_drake.control.cartesian_arm_controller import move_top_speeds_mps
+    from tegrasp_drake.control.motion_profiles import (MINIMUM_JERK_PEAK_SPEED,
+                                                       minimum_jerk_slope)
+    for field, distance, duration, what, paths in _hand_moves(scenario):
+        if distance <= 0:
+            continue
+        shortest, binding = 0.0, math.inf  # [s], the top speed [m/s] where it binds
+        for start, end in paths:
+            for tau, top in move_top_speeds_mps(start, end) or ():  # None: out of reach
+                needed = distance * minimum_jerk_slope(tau) / top
+                if needed > shortest:
+                    shortest, binding = needed, top
+        if duration < shortest:
             require(False, source, field,
                     f"is too short to move the hand {distance * 1000:.0f} mm ({what}): its "
-                    f"minimum-jerk move peaks at {peak_distance / duration:.3g} m/s, "
-                    f"more than the JACO2's hand can move ({limit:.2f} m/s: its joints' "
-                    f"speed limits times its {JACO2_REACH_M:g} m reach); give it at least "
-                    f"{math.ceil(peak_distance / limit * 1000) / 1000:g} s", duration)
+                    f"minimum-jerk move peaks at "
+                    f"{MINIMUM_JERK_PEAK_SPEED * distance / duration:.3g} m/s, more than the "
+                    f"JACO2 can move it along its path, its orientation held ({binding:.3g} "
+                    f"m/s where it binds); give it at least "
+                    f"{math.ceil(shortest * 1000) / 1000:g} s", duration)
 
 
 def script_duration(scenario: Scenario) -> float:
@@ -345,7 +370,6 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
             "confirm with --allow-long (LoadScenario(..., allow_long=True))")
     _check_sensors_and_scene(scenario, source)
     _check_controller(scenario, source)
-    _check_hand_speeds(scenario, source)
     problem = drive_problem(scenario.arm, scenario.plant_config.time_step)
     if problem:
         field, words, value = problem
@@ -370,6 +394,7 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
                               f"'grasp.grasp_height' put the side grasp out of the JACO2's "
                               f"reach ({problem}), which the carriage's impedance (station.arm "
                               "carriage) is taken at: choose a marker in front of the arm")
+    _check_hand_speeds(scenario, source)  # at poses the checks above found in reach
     return scenario
 
 

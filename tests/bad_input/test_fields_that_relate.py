@@ -44,6 +44,24 @@ def test_a_move_faster_than_the_arm_can_follow_is_refused_naming_its_duration(ov
             f"'{field}' is too short to move the hand", "m/s", "give it at least")
 
 
+@pytest.mark.parametrize("overrides, field, controller, peak, top", [
+    # 60 mm up in 0.3 s peaks at 0.375 m/s: the arm lifts the hand at most 0.222 m/s there
+    (["grasp.lift_s=0.3"], "grasp.lift_s", "open_loop", "0.375", "0.222"),
+    # half the stroke along y in 0.2 s peaks at 0.398 m/s: at most 0.171 m/s there
+    (["controller.re_reach.move_s=0.2"], "controller.re_reach.move_s", "memorized", "0.398",
+     "0.171"),
+])
+def test_a_move_under_the_joints_limits_times_the_reach_but_too_fast_at_the_grasp_is_refused(
+        overrides, field, controller, peak, top):
+    """Under 3.56 m/s (each joint at its limit times the 0.9 m reach, the bound the check
+    once had) yet faster than the arm can move the hand that way at the grasp, its
+    orientation held: refused in one line with the peak, the arm's top speed there and the
+    shortest duration to give."""
+    refusal(lambda: T.LoadScenario(name="box", controller=controller, overrides=overrides),
+            f"'{field}' is too short to move the hand", f"peaks at {peak} m/s", f"({top} m/s",
+            "give it at least")
+
+
 def test_the_shortest_duration_a_refusal_gives_is_accepted():
     """The refusal's "give it at least T s" is a duration that loads: its bound is the
     same one the check applies."""

@@ -6,7 +6,9 @@ import numpy as np
 import pytest
 from pydrake.math import RigidTransform, RotationMatrix
 
-from tegrasp_drake.control.motion_profiles import MotionSegment, interpolate_pose, minimum_jerk
+from tegrasp_drake.control.motion_profiles import (MINIMUM_JERK_PEAK_SPEED, MotionSegment,
+                                                   interpolate_pose, minimum_jerk,
+                                                   minimum_jerk_slope)
 
 
 def test_minimum_jerk_starts_and_ends_at_rest():
@@ -64,3 +66,11 @@ def test_a_hold_stands_still_from_its_start():
     assert hold.done(4.0)
     for t in (0.0, 4.0, math.inf):
         np.testing.assert_array_equal(hold.position(t), [0.3, 0.1, 0.2])
+
+
+def test_the_minimum_jerk_slope_is_its_derivative_and_peaks_at_fifteen_eighths():
+    tau = np.linspace(0.0, 1.0, 101)
+    np.testing.assert_allclose(minimum_jerk_slope(tau), np.gradient(minimum_jerk(tau), tau),
+                               atol=2e-3)
+    assert minimum_jerk_slope(0.5) == MINIMUM_JERK_PEAK_SPEED
+    assert minimum_jerk_slope(0.0) == minimum_jerk_slope(1.0) == minimum_jerk_slope(1.5) == 0.0
