@@ -169,14 +169,6 @@ def test_a_log_folder_removed_mid_run_is_a_fault_and_the_result_is_still_written
     assert "no log" in captured.out and "removed during the run" in captured.err
 
 
-@pytest.mark.parametrize("duration", ["1e-9", "0.001"])
-def test_a_run_shorter_than_one_arm_command_period_is_refused(duration, capsys):
-    with pytest.raises(SystemExit) as refused:
-        cli.build_parser().parse_args(["hardware", "--duration", duration])
-    assert refused.value.code == 2
-    assert "one period of the arm's commands" in capsys.readouterr().err
-
-
 def test_a_serial_port_another_run_reads_cannot_be_opened_by_a_second(tmp_path):
     import serial
     from tegrasp_drake.emulators.null_modem import open_raw_pty
