@@ -80,7 +80,7 @@ def test_trial_errors_give_exit_code_1(tmp_path, capsys):
 @pytest.mark.parametrize("arguments, message, code", [
     (["--objects", "box", "teapot"], "field 'objects': unknown object 'teapot'", 2),
     (["--controllers", "pid"], "field 'controllers': unknown controller 'pid'", 2),
-    (["--attempts", "0"], "field 'attempts'", 2),
+    (["--attempts", "0"], "--attempts must be a positive integer, got 0", 1),
     (["--workers", "0"], "--workers must be at least 1", 1),
     (["--benchmark", "--scheduler", "tcp://127.0.0.1:8786"], "drop --scheduler", 1),
     (["--set", "controller.memorized_corrective.events=[hold_smash]"],
@@ -88,8 +88,8 @@ def test_trial_errors_give_exit_code_1(tmp_path, capsys):
     (["--set", "object.name=box"], "set per trial by the sweep", 2),
 ])
 def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message, code):
-    """Exit 2 for what makes the spec (the options that set its fields), 1 for a runner's
-    option (bad input, as for any command)."""
+    """Exit 2 for a spec refused (the options that set its fields), 1 for a runner's option
+    or a number outside its range (bad input, as for any command)."""
     out = tmp_path / "out"
     assert command.main([*arguments, "--out", str(out), *FAKE]) == code
     assert message in capsys.readouterr().err

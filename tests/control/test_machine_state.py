@@ -35,8 +35,10 @@ def test_a_plan_with_a_value_out_of_its_range_is_refused_naming_the_field(fields
 
 def test_a_wide_object_on_the_farthest_marker_is_planned():
     """The grasp frame's target lies beyond the marker by the pads' offset (a 70 mm box: the
-    linkage's open pads sit behind the grasp frame), so past the marker's 0.9 m range."""
+    linkage's open pads sit behind the grasp frame), so past the marker's 0.9 m range. The
+    arm stretched that far moves the hand at most 0.127 m/s on the way: the Reach and the
+    Retract to the start are given the 3.5 s they then take."""
     scenario = LoadScenario(overrides=[
-        "placement.expected_xy=[0.9, 0.0]", "object.name=wide_box", "object.shape=box",
+        "placement.expected_xy=[0.9, 0.0]", "grasp.reach_s=3.5", "grasp.retract_s=3.5", "object.name=wide_box", "object.shape=box",
         "object.size=[0.07, 0.07, 0.1]", "object.mass=0.1", "object.friction=0.5"])
     assert grasp_plan(scenario).object_xy[0] > 0.9
