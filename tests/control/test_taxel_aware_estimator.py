@@ -303,6 +303,14 @@ def test_the_first_ra_onset_of_the_close_is_remembered_with_its_film_and_opening
     assert memory.after_transition(Mode.REACH, Mode.RE_REACH, ()).ra_onset_opening_m < 0.0
 
 
+def test_the_close_reads_an_ra_onset_between_the_ticks_by_its_peak():
+    """A touch whose ring has died down by the tick's sample is still the close's onset."""
+    threshold = TAXEL.ra_onset_mps2
+    _, estimate = ESTIMATOR.update(ContactMemory(), reading(
+        ra_mps2=(0.0, 0.0), ra_peak_mps2=(0.0, 2 * threshold)))
+    assert (estimate.ra_onset_finger, estimate.ra_onset_opening_m) == ("right", 0.0719)
+
+
 def test_an_ra_onset_on_both_films_in_one_tick_names_no_film():
     _, estimate = ESTIMATOR.update(ContactMemory(), reading(ra_mps2=(10.0, 10.0)))
     assert estimate.ra_onset_finger == "" and estimate.ra_onset_opening_m == 0.0719

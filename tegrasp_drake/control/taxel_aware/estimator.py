@@ -241,7 +241,7 @@ class ContactEstimator:
         """Remembers the close's first RA onset (ra_onset.onset_finger)."""
         if not r.closing or memory.ra_onset_opening_m >= 0.0:
             return memory
-        finger = onset_finger(r.ra_mps2, self._ra_onset_mps2)
+        finger = onset_finger(_tick_ra(r), self._ra_onset_mps2)
         if finger is None:
             return memory
         return dataclasses.replace(memory, ra_onset_finger=finger,
@@ -256,9 +256,7 @@ class ContactEstimator:
         wrist = r.wrench is not None
         if not (config.enabled and r.approaching and (wrist or self._film_strike)):
             return memory, {}
-        # every RA sample of the tick: a light strike's ring can last one tick or less
-        ra = r.ra_mps2 if r.ra_peak_mps2 is None else r.ra_peak_mps2
-        film = onset_finger(ra, self._ra_onset_mps2) if self._film_strike else None
+        film = onset_finger(_tick_ra(r), self._ra_onset_mps2) if self._film_strike else None
         film_finger = film if film in FINGERS else ""
         baseline = (memory.strike_baseline or tuple(float(x) for x in r.wrench)) if wrist else ()
         force = strike_force_n(r.wrench, baseline) if wrist else 0.0
@@ -291,6 +289,14 @@ class ContactEstimator:
                                                 object_width_m=g.width_m,
                                                 object_height_m=g.height_m)
         return memory, topples
+
+
+def _tick_ra(r: ContactReading):
+    """Each film's RA over the tick [m/s^2]: its peak |RA| over every sample since the last
+    tick where the diagram gives it (ra_tick_peak.py), else the tick's own sample. A light
+    touch's ring can last one tick or less (the wide light box's strike: 6 ms above the
+    onset), and the onset threshold was set against noise on every sample."""
+    return r.ra_mps2 if r.ra_peak_mps2 is None else r.ra_peak_mps2
 
 
 def _since(since: float, t: float, on: bool) -> float:
