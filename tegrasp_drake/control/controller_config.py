@@ -21,6 +21,10 @@ _SIGMAS_BELOW = "must be zero (the number alone) or positive [noise sigmas]"
 
 # A timeout of zero would give up before its event could come (the user guide: refused)
 TIMEOUT_BELOW = "must be positive [s]: a zero timeout gives up before its event can come"
+# An arm move's duration: the hand cannot move in no time (a move too short for the arm to
+# follow is refused with the shortest it may take, scenario._check_hand_speeds).
+MOVE_BELOW = ("must be positive [s]: the arm cannot move the hand in no time (to leave the "
+              "move out, set its 'enabled' false)")
 
 @public_dataclass
 @dataclasses.dataclass
@@ -154,8 +158,8 @@ class ReReachConfig:
                                            unit="s", below=TIMEOUT_BELOW)
     max_re_reaches: int = bounded(2, low=0, high=10, below="must be zero or positive")
     # time to shift the open gripper sideways [s]
-    move_s: float = bounded(0.8, low=0.0, high=10.0, unit="s",
-                            below="must be zero or positive [s]")
+    move_s: float = bounded(0.8, low=0.0, low_open=True, high=10.0, unit="s",
+                            below=MOVE_BELOW)
     # the gripper counts as open beyond this opening [m]
     opened_m: float = bounded(0.080, low=0.0, high=0.085, unit="m",
                               why="the 2F-85's 85 mm stroke",
@@ -231,8 +235,8 @@ class AvoidConfig:
                                     below="must be zero or positive [N]")
     distance_m: float = bounded(0.05, low=0.0, high=0.3, unit="m",
                                 below="must be zero or positive [m]")
-    move_s: float = bounded(0.6, low=0.0, high=10.0, unit="s",
-                            below="must be zero or positive [s]")
+    move_s: float = bounded(0.6, low=0.0, low_open=True, high=10.0, unit="s",
+                            below=MOVE_BELOW)
     # Avoids in one grasp; a hit past them is not avoided (Hold goes on to Place). Each
     # moves the held object distance_m, so 3 keep it within 0.15 m of where it was lifted,
     # over the table the grasp was planned on, while hits keep coming; the paper's test

@@ -226,12 +226,37 @@ def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
     return None
 
 
+class ControllerTagError(ValueError):
+    """A controller section whose YAML tag and `name` select different controllers."""
+
+
+def controller_tag_problem(section) -> str | None:
+    """Words for a `controller` section of YAML data whose tag and name select different
+    controllers (`!HeuristicControllerConfig {name: memorized}`), else None: neither may
+    silently win."""
+    if not isinstance(section, dict) or "name" not in section or "_tag" not in section:
+        return None
+    name, tag = section["name"], section["_tag"]
+    if not isinstance(name, str) or name not in _ENTRY_OF_NAME:
+        return None  # an unknown name: controller_class names it
+    if tag == f"!{_ENTRY_OF_NAME[name].config.__name__}":
+        return None
+    return (f"its tag {str(tag)[:80]} and its name '{name}' "
+            f"(!{_ENTRY_OF_NAME[name].config.__name__}) select different controllers: give "
+            "one of them, the tag or controller.name (to run another controller: "
+            "--controller NAME)")
+
+
 def select_controller_tag(data: dict, *, drop_others: bool = False) -> list[str]:
     """Turns `controller: {name: NAME, ...}` of YAML data, in place, into NAME's tag; with
-    drop_others, drops the other controllers' settings NAME lacks and returns their paths."""
+    drop_others, drops the other controllers' settings NAME lacks and returns their paths.
+    ControllerTagError when the section's own tag selects another controller."""
     section = data.get("controller") if isinstance(data, dict) else None
     if not isinstance(section, dict) or "name" not in section:
         return []
+    problem = controller_tag_problem(section)
+    if problem:
+        raise ControllerTagError(problem)
     cls = controller_class(section.pop("name"))
     section["_tag"] = f"!{cls.__name__}"
     if not drop_others:

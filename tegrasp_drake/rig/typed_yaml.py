@@ -46,6 +46,13 @@ class YamlSyntaxError(ConfigError):
 def read_yaml_file(path: str | pathlib.Path, what: str):
     """The parsed content of the YAML file at `path` (None if it is empty); `what` names the
     file in errors, e.g. "the scenario file"."""
+    text = read_yaml_text(path, what)
+    return parse_yaml(text, str(path)) if text else None
+
+
+def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
+    """The text of the YAML file at `path`, unparsed; ConfigError names what keeps it from
+    being read (missing, a folder or device, too large, not UTF-8), never its content."""
     path = pathlib.Path(path)
     try:
         if path.is_dir():
@@ -63,7 +70,7 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
                           f"{e.start}); give a YAML file") from None
     except OSError as e:
         raise ConfigError(f"{path}: cannot read {what}: {e.strerror or e}") from None
-    return parse_yaml(text, str(path)) if text else None
+    return text
 
 
 # read_yaml_file_cached's parsed files: (path, device, inode, size, mtime in ns) -> data.
@@ -101,13 +108,39 @@ def require_fields(data, path, what: str, advice: str) -> None:
         raise ConfigError(f"{path}: {what} is empty (no fields); {advice}")
 
 
-def require_mapping(data, path, what: str, contents: str) -> None:
+def require_mapping(data, path, what: str, contents: str, *, echo: bool = True) -> None:
     """ConfigError unless a configuration file's top level is a mapping: a file whose top
     level is a list or a scalar says so, in the words of `what` ("the scenario file") and
-    `contents` (what its keys are: "scenario names"), not as a missing key."""
+    `contents` (what its keys are: "scenario names"), not as a missing key. echo=False: a
+    file a field names, which may be any file the user can read: the error says the kind and
+    size of what it found, never its content (content_words)."""
     if not isinstance(data, dict):
+        found = _describe(data) if echo else content_words(data)
         raise ConfigError(f"{path}: {what}'s top level must be a mapping of {contents}, got "
-                          f"{_describe(data)}")
+                          f"{found}")
+
+
+def content_words(data) -> str:
+    """What parsed YAML data is, without its content: "a list of 3 items", "text of 1222
+    characters" (an error about a file a field names, which may be any readable file)."""
+    if isinstance(data, (list, dict)):
+        count = len(data)
+        kind = "list" if isinstance(data, list) else "mapping"
+        return f"a {kind} of {count} {'item' if count == 1 else 'items'}"
+    if isinstance(data, str):
+        return f"text of {len(data)} characters"
+    return f"a {type(data).__name__}"
+
+
+def require_known_keys(data: dict, schema, path, what: str, advice: str) -> None:
+    """ConfigError unless every top-level key of a file a field names is a field of `schema`:
+    else it is not such a file, said by how many keys are not, never which (the file may be
+    any readable one; its first line would be shown)."""
+    fields = {field.name for field in dataclasses.fields(schema)}
+    unknown = [key for key in data if key != "_tag" and key not in fields]
+    if unknown:
+        raise ConfigError(f"{path}: is not {what} ({len(unknown)} of its {len(data)} top-level "
+                          f"keys are not one of {', '.join(sorted(fields))}): {advice}")
 
 
 def optional_field(data: dict, name: str, source: str, absent):
@@ -464,6 +497,7 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
         value = python_scalar(value)
         if not _is_scalar(value, hint) and not (hint is float and isinstance(value, float)):
             _check_value(value, hint, path, source)  # the YAML path's words for a scalar
+        _check_text(value, path, source)
     elif isinstance(hint, type) and origin is None and not isinstance(value, hint):
         _refuse_type(value, _type_words(hint), path, source)
 
@@ -486,6 +520,33 @@ def _type_words(hint) -> str:
 # What a value of each scalar type must be, in an error message: alone, and in a list.
 _SCALAR_WORDS = {float: ("a finite number", "finite numbers"), int: ("an integer", "integers"),
                  str: ("a string", "names"), bool: ("true or false", "true or false values")}
+
+
+# A control character (C0 but tab and line breaks, which a stored scenario's YAML text holds;
+# DEL) in a text field: no name, port, URL or file name of a rig holds one, the operating
+# system refuses a NUL in a path (a ValueError deep in a check), an escape would drive the
+# terminal an error is shown on.
+_CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+_CONTROL_NAMES = {0: "a NUL", 27: "an escape", 127: "a DEL"}
+
+
+def text_problem(text: str) -> str | None:
+    """Why `text` cannot be a config's text (a name, port, URL, path), in words that follow
+    "field 'x'", or None."""
+    found = _CONTROL.search(text)
+    if found is None:
+        return None
+    code = ord(found.group())
+    name = _CONTROL_NAMES.get(code, "a control character")
+    return (f"holds {name} (character 0x{code:02x}) at position {found.start()}: text "
+            "fields take printable characters only; remove it")
+
+
+def _check_text(value, path: str, source: str) -> None:
+    if isinstance(value, str):
+        problem = text_problem(value)
+        if problem:
+            raise ConfigError(f"{source}: field '{path}' {problem}, got {shorten(repr(value))}")
 
 
 def _is_scalar(value, hint) -> bool:
@@ -574,6 +635,7 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False) -> N
         if not _is_scalar(value, hint):
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
                               f"{_describe(value)}{_text_as_value_hint(value, hint)}")
+        _check_text(value, path, source)
     else:
         check_fields(value, hint, source, path, stored=stored)
 

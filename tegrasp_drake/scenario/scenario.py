@@ -18,7 +18,8 @@ from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 
 from tegrasp_drake.control.controller_registry import (
     CONTROLLER_CLASSES, CONTROLLER_NAMES, ControllerConfig, UnknownControllerError,
-    controller_entry, controller_named, foreign_setting, select_controller_tag)
+    controller_entry, controller_named, controller_tag_problem, foreign_setting,
+    select_controller_tag)
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
@@ -282,6 +283,10 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
     from tegrasp_drake.control.motion_profiles import (MINIMUM_JERK_PEAK_SPEED,
                                                        minimum_jerk_slope)
     for field, distance, duration, what, paths in _hand_moves(scenario):
+        # each duration's declared range excludes 0; a config that skipped check_ranges
+        # must not divide by it below
+        require(duration > 0, source, field, "must be positive [s]: the arm cannot move the "
+                f"hand in no time ({what})", duration)
         if distance <= 0:
             continue
         shortest, binding = 0.0, math.inf  # [s], the top speed [m/s] where it binds
@@ -458,9 +463,15 @@ def _checked_scenario(data: dict, source: str, *, controller, allow_long, on_ign
     """The Scenario of a loaded entry's `data` (its overrides applied), checked; errors name
     `source`."""
     refuse_moved_keys(data, source)
+    problem = controller_tag_problem(data.get("controller"))  # as written, before a choice
+    if problem:
+        raise ConfigError(f"{source}: field 'controller': {problem}")
     if controller is not None:
         check_controller_section_as_written(data, source)
-        data.setdefault("controller", {})["name"] = controller
+        section = data.setdefault("controller", {})
+        section["name"] = controller
+        if isinstance(section, dict):
+            section.pop("_tag", None)  # the choice replaces the written controller
     try:
         ignored = select_controller_tag(data, drop_others=controller is not None)
     except UnknownControllerError as e:

@@ -72,11 +72,17 @@ def test_the_shortest_duration_a_refusal_gives_is_accepted():
     assert T.LoadScenario(name="box", overrides=[f"grasp.reach_s={shortest}"])
 
 
-def test_a_zero_length_move_may_take_no_time():
+def test_a_zero_length_move_loads_with_a_positive_duration_only():
+    """Avoid's distance may be 0 (no move); its duration must still be positive, as every
+    arm move's: a move in no time is no duration the arm can follow."""
     scenario = T.LoadScenario(name="box", controller="memorized",
                               overrides=["controller.avoid.distance_m=0",
-                                         "controller.avoid.move_s=0"])
-    assert scenario.controller.avoid.move_s == 0
+                                         "controller.avoid.move_s=0.001"])
+    assert scenario.controller.avoid.move_s == 0.001
+    refusal(lambda: T.LoadScenario(name="box", controller="memorized",
+                                   overrides=["controller.avoid.distance_m=0",
+                                              "controller.avoid.move_s=0"]),
+            "field 'controller.avoid.move_s' must be positive [s]")
 
 
 @pytest.mark.parametrize("overrides, words", [

@@ -238,3 +238,65 @@ def test_a_config_with_such_a_timeout_is_one_line(tmp_path, capfd):
                       "watchdog: {arm_timeout: 1.0e-9}\n")
     code, text = run_cli(["hardware", "--config", str(config)], capfd)
     assert_one_line_error(code, text, "field 'watchdog.arm_timeout'", "give more than 0.02 s")
+
+
+# Rule: a text field (a port, a file name, a name) holding a control character is refused at
+# load naming the field, in files, --config-set/--set and the Python API alike: a NUL would
+# reach the operating system's path functions as a ValueError (exit 70).
+@pytest.mark.parametrize("body, field", [
+    ('gripper: {port: "/dev/pts/\\0"}\n', "gripper.port"),
+    ('tactile: {port: "/dev/x\\0"}\n', "tactile.port"),
+    ('tactile: {calibration_file: "/tmp/x\\0y"}\n', "tactile.calibration_file"),
+    ('tactile: {port: "/dev/x\\e[2J"}\n', "tactile.port"),
+])
+def test_a_control_character_in_a_hardware_config_is_refused_naming_the_field(
+        tmp_path, body, field):
+    path = tmp_path / "hw.yaml"
+    path.write_text(body)
+    message = refusal(lambda: LoadHardwareConfig(path), str(path), f"field '{field}' holds",
+                      "printable characters only")
+    assert "\x00" not in message and "\x1b" not in message
+
+
+def test_a_nul_in_a_config_set_port_is_bad_input(tmp_path, capfd):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set",
+                          'tactile.port="/dev/x\\0"', "--log", str(tmp_path / "run.lcmlog")],
+                         capfd)
+    assert_one_line_error(code, text, "field 'tactile.port' holds a NUL")
+    assert code == 1
+
+
+def test_a_nul_in_a_port_set_from_python_is_refused_by_the_builder():
+    from tegrasp_drake.hardware.station import MakeHardwareStation
+    config = HardwareStationConfig()
+    config.gripper.port = "/dev/pts/\0"
+    with pytest.raises(ConfigError) as refused:  # before any device is opened
+        MakeHardwareStation(config)
+    assert "argument 'config': field 'gripper.port' holds a NUL" in str(refused.value)
+
+
+# Rule: a file a field names may be any file the user can read (the hardware command may run
+# with privileges): one that is no calibration is refused by what it is and its size, never
+# by its content (a first line, a key, a token of a YAML error).
+@pytest.mark.parametrize("content, words", [
+    ("root:$6$secretsalt$secrethash:20228:0:99999:7:::\ndaemon:*:20228::::::\n",
+     "2 of its 2 top-level keys are not one of"),
+    ("secret words on a line\nmore secret words\n", "got text of"),
+    ("- secret\n- words\n", "got a list of 2 items"),
+    ("secret: [unclosed\n", "are refused as YAML"),
+    ("secret: 1\nsecret: 2\n", "are refused as YAML"),
+])
+def test_a_file_that_is_no_calibration_is_refused_without_its_content(tmp_path, capfd, content,
+                                                                        words):
+    (tmp_path / "private").write_text(content)
+    message = refusal(lambda: LoadTactileCalibration(tmp_path / "private"), words)
+    assert "secret" not in message.replace(str(tmp_path), ""), message
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set",
+                          f"tactile.calibration_file={tmp_path / 'private'}",
+                          "--log", str(tmp_path / "run.lcmlog")], capfd)
+    assert_one_line_error(code, text, "field 'tactile.calibration_file'", words)
+    assert code == 1 and "secret" not in text.replace(str(tmp_path), "")

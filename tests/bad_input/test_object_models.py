@@ -485,3 +485,25 @@ def test_a_jointed_model_is_refused_at_station_build(tmp_path):
     text = str(refused.value)
     assert "\n" not in text and "field 'object.file'" in text and str(file) in text, text
     assert "one free body" in text, text
+
+
+# Rule: a NUL in object.file (a file, --set, a Scenario changed in Python) is refused naming
+# the field, not left to the file checks' ValueError (exit 70).
+def test_a_nul_in_the_object_file_is_refused_naming_the_field(tmp_path, capfd, no_simulation):
+    import dataclasses
+    scenarios = tmp_path / "s.yaml"
+    scenarios.write_text('x: {controller: {name: open_loop}, object: {name: myobj, shape: file, '
+                         'file: "sdf/good\\0.sdf", size: [0.04, 0.04, 0.1], mass: 0.1, '
+                         'friction: 0.5}}\n')
+    with pytest.raises(ConfigError) as refused:
+        tegrasp_drake.LoadScenario(scenarios, "x")
+    assert "field 'object.file' holds a NUL" in one_line_of(refused.value)
+    code, text = run_cli(["trial", "--scenario", str(scenarios), "--scenario-name", "x",
+                          "--out", str(tmp_path / "run")], capfd)
+    assert_one_line_error(code, text, "field 'object.file' holds a NUL")
+    assert code == 1
+    scenario = tegrasp_drake.LoadScenario(name="box")
+    with pytest.raises(ConfigError) as refused:  # the config refuses it as it is made
+        dataclasses.replace(scenario.object, name="myobj", shape="file", file="a\0b",
+                            mass=0.1, friction=0.5, size=[0.04, 0.04, 0.1])
+    assert "field 'file' holds a NUL" in one_line_of(refused.value)

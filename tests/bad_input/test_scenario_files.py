@@ -304,3 +304,43 @@ def test_a_scenario_file_naming_a_removed_driver_gain_says_what_replaced_it(tmp_
     assert_one_line_error(code, text, str(scenario),
                           "'gripper.driver_position_gain' was removed",
                           "gripper.position_loop_hz", "delete it")
+
+
+# Rule: a controller section's YAML tag and its name select the controller together or not
+# at all: neither silently wins, in a file, a --set or a stored scenario; --controller still
+# replaces the controller a section selects.
+@pytest.mark.parametrize("entry, tag, name", [
+    ("  controller: !HeuristicControllerConfig {name: memorized}\n",
+     "!HeuristicControllerConfig", "memorized"),
+    ("  controller: !TaxelAwareControllerConfig {name: open_loop}\n",
+     "!TaxelAwareControllerConfig", "open_loop"),
+])
+def test_a_controller_tag_and_name_that_disagree_are_refused_naming_both(entry, tag, name,
+                                                                        tmp_path, capfd):
+    scenario = tmp_path / "tagged.yaml"
+    scenario.write_text("mine:\n" + entry)
+    message = refusal(lambda: LoadScenario(scenario, "mine"), "field 'controller'", tag,
+                      f"'{name}'", "select different controllers")
+    assert str(scenario) in message
+    code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine",
+                          "--out", str(tmp_path / "run")], capfd)
+    assert_one_line_error(code, text, tag, f"'{name}'")
+    assert code == 1
+
+
+def test_a_set_controller_whose_tag_and_name_disagree_is_refused(tmp_path, capfd):
+    assignment = "controller=!HeuristicControllerConfig {name: open_loop}"
+    refusal(lambda: LoadScenario(overrides=[assignment]), "!HeuristicControllerConfig",
+            "'open_loop'", "select different controllers")
+    code, text = run_cli(["trial", "--set", assignment, "--out", str(tmp_path / "run")], capfd)
+    assert_one_line_error(code, text, "!HeuristicControllerConfig", "'open_loop'")
+    assert code == 1
+
+
+def test_a_controller_tag_and_name_that_agree_load_and_a_choice_replaces_them(tmp_path):
+    scenario = tmp_path / "tagged.yaml"
+    scenario.write_text("mine:\n  controller: !HeuristicControllerConfig {name: heuristic}\n"
+                        "other:\n  controller: !HeuristicControllerConfig {}\n")
+    assert LoadScenario(scenario, "mine").controller.name == "heuristic"
+    assert LoadScenario(scenario, "other", controller="memorized").controller.name == (
+        "memorized")

@@ -110,6 +110,77 @@ def test_a_zero_controller_timeout_is_refused(key):
         LoadScenario(name="box", overrides=[f"{key}=0.0"])
 
 
+def _numeric_fields(scenario) -> list[str]:
+    """The dotted name of every number a scenario holds (lists left out)."""
+    import yaml
+    from tegrasp_drake.scenario.scenario import scenario_to_yaml
+
+    class Loader(yaml.SafeLoader):
+        pass
+    Loader.add_multi_constructor("!", lambda loader, _, node: loader.construct_mapping(node))
+    found = []
+
+    def walk(value, path):
+        if isinstance(value, dict):
+            for key, item in value.items():
+                walk(item, f"{path}.{key}" if path else str(key))
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            found.append(path)
+    walk(yaml.load(scenario_to_yaml(scenario), Loader=Loader), "")
+    return found
+
+
+@pytest.mark.parametrize("controller", ["open_loop", "memorized", "heuristic", "taxel_aware",
+                                        "fixed_load_time"])
+def test_every_number_set_to_zero_loads_or_is_refused_in_one_line(controller):
+    """0 and -0.0 in each numeric field, with each controller: the scenario loads or is
+    refused in one ConfigError line naming the field; no check divides by a zero it let
+    through (a move duration of 0 once reached the hand-speed check's division)."""
+    from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
+    assert controller in CONTROLLER_NAMES and len(CONTROLLER_NAMES) == 5
+    base = [f"controller.name={controller}"]
+    fields = _numeric_fields(LoadScenario(overrides=base))
+    assert "controller.avoid.move_s" in fields or controller == "open_loop"
+    for field in fields:
+        for zero in ("0", "-0.0"):
+            try:
+                LoadScenario(overrides=[*base, f"{field}={zero}"])
+            except ConfigError as refused:
+                assert f"'{field}" in one_line_of(refused), (field, str(refused))
+
+
+@pytest.mark.parametrize("field", ["controller.avoid.move_s", "controller.re_reach.move_s"])
+@pytest.mark.parametrize("zero", ["0", "-0.0"])
+def test_a_move_in_no_time_is_refused_naming_its_duration(field, zero):
+    refusal(lambda: LoadScenario(overrides=[f"{field}={zero}"]),
+            f"field '{field}' must be positive [s]", "the arm cannot move the hand")
+
+
+def test_a_move_in_no_time_is_refused_by_the_api_and_the_command_line(tmp_path, capfd,
+                                                                      no_simulation):
+    """A scenario changed after loading is checked where it is run; `tegrasp trial` and a
+    sweep spec's scenario_overrides refuse it as bad input (exits 1 and 2), never exit 70."""
+    import dataclasses
+    from tegrasp_drake.scenario.scenario import _check_hand_speeds
+    scenario = LoadScenario(name="box", overrides=[f"random_seed={SEED}"])
+    scenario.controller.re_reach = dataclasses.replace(scenario.controller.re_reach, move_s=0.0)
+    with pytest.raises(ConfigError) as refused:
+        T.run_trial(scenario)
+    assert "'controller.re_reach.move_s' must be positive" in one_line_of(refused.value)
+    with pytest.raises(ConfigError) as refused:  # the cross-field check alone never divides
+        _check_hand_speeds(scenario, "scenario")
+    assert "'controller.re_reach.move_s' must be positive" in one_line_of(refused.value)
+    code, text = run_cli(["trial", "--out", str(tmp_path / "t"), "--set",
+                          "controller.avoid.move_s=0"], capfd)
+    assert code == 1 and "'controller.avoid.move_s' must be positive" in text, text
+    assert len(text.strip().splitlines()) == 1, text
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("scenario_overrides: [controller.avoid.move_s=0]\n")
+    code, text = run_cli(["sweep", "--dry-run", "--spec", str(spec), "--out",
+                          str(tmp_path / "s")], capfd)
+    assert code == 2 and "'controller.avoid.move_s' must be positive" in text, text
+
+
 # Every range that stops at an open 0, decided by its physics: a tiny positive value of these
 # is harmless. Times [s]: a simulated one shorter than the plant step is refused
 # (check_times_resolved), a device timeout that short fails at once naming the device. Speeds,
@@ -122,8 +193,10 @@ def test_a_zero_controller_timeout_is_refused(key):
 # fingertip's mode, mass and stiffness; the amplifier's capacitor, swing, corner and rate; the
 # pad texture, pad friction, the 2F-85's 20 N grip; the taxels' calibration weight and gap;
 # the gains and rates: the servos' and the tracker's gains, the film's charge gain, the arm's
-# command and the gripper's update rates).
+# command and the gripper's update rates). An arm move's duration: one too short for the arm
+# to follow is refused at load with the shortest it may take (scenario._check_hand_speeds).
 TINY_IS_HARMLESS = {
+    "AvoidConfig": {"move_s"},
     "ArmDriverConfig": {"command_latency_s", "control_period_s"},
     "DeviceWatchdogConfig": {"arm_timeout", "gripper_timeout", "tactile_timeout"},
     "DisturbanceConfig": {"hit_duration_s"},
@@ -142,7 +215,7 @@ TINY_IS_HARMLESS = {
     "MemorizedControllerConfig": {"load_event_timeout_s", "update_period_s"},
     "MultibodyPlantConfig": {"penetration_allowance", "stiction_tolerance"},
     "PlaceConfig": {"event_timeout_s"},
-    "ReReachConfig": {"reach_event_timeout_s"},
+    "ReReachConfig": {"move_s", "reach_event_timeout_s"},
     "RobotiqModbusConfig": {"activation_timeout", "command_refresh_period", "request_timeout"},
     "SerialTactileDriver": {"stale_timeout"},
     "SimulatorConfig": {"accuracy", "max_step_size"},

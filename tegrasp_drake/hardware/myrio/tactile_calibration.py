@@ -60,15 +60,25 @@ class TactileCalibration:
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
     """Reads a TactileCalibration from YAML; otherwise a ConfigError naming the file and field."""
-    from tegrasp_drake.rig.typed_yaml import (ConfigError, load_typed, read_yaml_file,
+    from tegrasp_drake.rig.typed_yaml import (ConfigError, load_typed, parse_yaml,
+                                              read_yaml_text, require_known_keys,
                                               require_mapping)
-    data = read_yaml_file(filename, "the tactile calibration")
+    # A field names the file, which may be any file the user can read: what is wrong with
+    # one that is no calibration is said without showing its content.
+    advice = "give a calibration SaveTactileCalibration wrote, or no file for the defaults"
+    text = read_yaml_text(filename, "the tactile calibration")
+    try:
+        data = parse_yaml(text, str(filename)) if text else None
+    except ConfigError:  # its words may quote the text (a key, a token)
+        raise ConfigError(f"{filename}: is not a tactile calibration (its {len(text)} "
+                          f"characters are refused as YAML): {advice}") from None
     if data is None:
         raise ConfigError(f"{filename}: the tactile calibration is empty; give the pads' "
                           "gains and offsets (left, right, zero_samples), or no file for "
                           "the defaults")
     require_mapping(data, filename, "the tactile calibration",
-                    "fields (left, right, zero_samples, piezo_volts_per_count)")
+                    "fields (left, right, zero_samples, piezo_volts_per_count)", echo=False)
+    require_known_keys(data, TactileCalibration, filename, "a tactile calibration", advice)
     data.pop("_tag", None)
     calibration = load_typed(data, TactileCalibration, str(filename))
     check_ranges(calibration, str(filename))
