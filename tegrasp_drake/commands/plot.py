@@ -89,13 +89,16 @@ def output_path(args) -> pathlib.Path:
 
 def _plot_events(args, out) -> str:
     from tegrasp_drake.events import MemorizedEventError, load_all_memorized_events
+    from tegrasp_drake.events.event_file import has_index
     from tegrasp_drake.figures.events import plot_memorized_events
     check_events_folder(args.events)
     events = {}
     try:
         # The first folder that has an object's events wins (the user's before the package's).
+        # A folder is passed over only when nothing is at its index path (has_index): an
+        # index there that cannot be read is refused, from --events or the environment alike.
         for folder in reversed(paths.events_search_path(args.events)):
-            if (folder / "index.json").is_file() or args.events:
+            if has_index(folder) or args.events:
                 loaded = load_all_memorized_events(folder)
                 logger.debug(f"plot events: {len(loaded)} memorized events from {folder}")
                 events.update(loaded)

@@ -9,6 +9,7 @@ MemorizedEventError naming the file and the command that remakes it (FORMAT.md).
 
 import json
 import math
+import os
 import pathlib
 
 import numpy as np
@@ -275,6 +276,15 @@ def read_memorized_event(path, *, object_name: str | None = None,
             raise MemorizedEventError(path, f"holds {name} '{found}', expected '{expected}'",
                                       owner)
     return event
+
+
+def has_index(events_dir) -> bool:
+    """True when anything is at the folder's index path: a file, and as well a pipe, a folder,
+    a device or a symlink that loops or leads nowhere, which read_index then refuses by name.
+    False only when nothing is there (no events saved in that folder yet). Every reader that
+    passes over a folder without an index asks this, not is_file(), so an index that cannot
+    be read is never skipped in silence for the next folder's events."""
+    return os.path.lexists(pathlib.Path(events_dir) / INDEX_FILE)
 
 
 def read_index(events_dir) -> list[dict]:

@@ -16,7 +16,7 @@ from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import shorten
 from tegrasp_drake.events.event_file import (
     FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
-    remake_advice, event_json_text, event_summary, event_to_json, read_index,
+    remake_advice, event_json_text, event_summary, event_to_json, has_index, read_index,
     read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
@@ -214,7 +214,7 @@ def load_memorized_events(events_dir: PathLike, object_name: str, *,
 def events_folder_of(folders, object_name: str) -> pathlib.Path | None:
     """The first of `folders` whose index lists `object_name` (None if none does)."""
     for folder in map(pathlib.Path, folders):
-        if os.path.lexists(folder / INDEX_FILE) and any(
+        if has_index(folder) and any(
                 e["object"] == object_name for e in read_index(folder)):
             return folder
     return None
@@ -228,7 +228,7 @@ def find_memorized_events(folders, object_name: str, *,
     folders = [pathlib.Path(f) for f in folders]
     looked = []
     for folder in folders:
-        if not os.path.lexists(folder / INDEX_FILE):
+        if not has_index(folder):
             looked.append(f"{folder} (no {INDEX_FILE})")
             continue
         if any(e["object"] == object_name for e in read_index(folder)):

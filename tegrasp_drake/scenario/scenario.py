@@ -27,6 +27,7 @@ from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_
                                       check_times_resolved, declare_ranges, shorten)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
                                           load_typed, parse_yaml, read_yaml_file_cached, require,
@@ -291,7 +292,10 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
             continue
         shortest, binding = 0.0, math.inf  # [s], the top speed [m/s] where it binds
         for start, end in paths:
-            for tau, top in move_top_speeds_mps(start, end) or ():  # None: out of reach
+            tops = move_top_speeds_mps(start, end)
+            if tops is None:  # the arm cannot put the hand at a pose of this move
+                _refuse_unreachable_move(field, what, start, end, source)
+            for tau, top in tops:
                 needed = distance * minimum_jerk_slope(tau) / top
                 if needed > shortest:
                     shortest, binding = needed, top
@@ -303,6 +307,98 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
                     f"JACO2 can move it along its path, its orientation held ({binding:.3g} "
                     f"m/s where it binds); give it at least "
                     f"{math.ceil(shortest * 1000) / 1000:g} s", duration)
+
+
+# The settings that place each arm move's poses (by its duration field), which a move out of
+# the arm's reach names: the start pose, the marker and grasp height, and what each phase adds.
+_GRASP_POSE_FIELDS = ("placement.expected_xy", "grasp.grasp_height")
+_MOVE_PLACED_BY = {
+    "grasp.reach_s": ("arm.initial_gripper_xyz",) + _GRASP_POSE_FIELDS,
+    "grasp.lift_s": _GRASP_POSE_FIELDS + ("grasp.lift_height",),
+    "grasp.place_s": _GRASP_POSE_FIELDS + ("grasp.lift_height", "grasp.place_offset",
+                                           "grasp.place_press"),
+    "grasp.retract_s": _GRASP_POSE_FIELDS + ("grasp.place_offset", "grasp.retract_distance",
+                                             "arm.initial_gripper_xyz"),
+    "controller.avoid.move_s": _GRASP_POSE_FIELDS + ("grasp.lift_height",
+                                                     "controller.avoid.distance_m"),
+    "controller.re_reach.move_s": _GRASP_POSE_FIELDS,
+}
+
+
+def _refuse_unreachable_move(field: str, what: str, start, end, source: str) -> None:
+    """ConfigError naming the fields that place a move (field: its duration) the JACO2 cannot
+    follow: no joint angles put the hand at a pose along it in the side grasp's orientation,
+    or following it from its start leaves the arm's reach (move_top_speeds_mps is None)."""
+    placed_by = _MOVE_PLACED_BY.get(field, (field,))
+    fields = ", ".join(f"'{name}'" for name in placed_by)
+    raise ConfigError(
+        f"{source}: fields {fields} put {what} (from {_mm_text(start)} to {_mm_text(end)} "
+        "m) out of the JACO2's reach in the side grasp; place them in front of the arm "
+        "(defaults [0.72, 0.0] and [0.69, 0.0, 0.145] m)")
+
+
+def _mm_text(xyz) -> str:
+    return number_text([round(float(v), 3) for v in xyz])
+
+
+def _open_hand_parts() -> tuple[tuple[float, float, float, float, float], ...]:
+    """The open 2F-85's solid parts as boxes about the grasp frame G in the side grasp [m]:
+    each (back, front) along the approach (world x, from G), (right, left) across the stroke
+    (world y, from G) and half its extent up and down (world z). Both hand models, from the
+    dimensions their models are built from: the body, a cylinder of BASE_RADIUS (the
+    datasheet's ~75 mm body) from the mounting face (PAD_CENTER_Z behind G) to the palm
+    (PALM_Z from it); and each finger, from the palm to its pad's far end (PAD_LENGTH / 2
+    beyond G), from its open pad's face (HALF_STROKE from G) out to the wider hand's outer
+    face (the prismatic finger's back, or the linkage's widest pin plus half its bar), as
+    thick as a pad or a linkage bar, whichever is thicker. The space between the open pads
+    is free: a hand may start with an object there (the station's squeeze tests do)."""
+    from tegrasp_drake.modelgen.robotiq_linkage_sdf import LINK_BAR_SIZE
+    from tegrasp_drake.modelgen.robotiq_sdf import BASE_RADIUS, FINGER_LINK_THICKNESS
+    from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
+    from tegrasp_drake.robotiq import linkage
+    from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z, PALM_Z
+    outer = max(HALF_STROKE + PAD_THICKNESS + FINGER_LINK_THICKNESS,
+                max(float(point[0]) for point in (
+                    linkage.A, linkage.B, linkage.C, linkage.D, linkage.E)) + LINK_BAR_SIZE / 2)
+    palm, tip, finger_half_z = PALM_Z - PAD_CENTER_Z, PAD_LENGTH / 2, max(PAD_WIDTH,
+                                                                          LINK_BAR_SIZE) / 2
+    return ((-PAD_CENTER_Z, palm, -BASE_RADIUS, BASE_RADIUS, BASE_RADIUS),
+            (palm, tip, HALF_STROKE, outer, finger_half_z),
+            (palm, tip, -outer, -HALF_STROKE, finger_half_z))
+
+
+def _check_start_clearance(scenario: Scenario, source: str) -> None:
+    """The open hand at its start pose (arm.initial_gripper_xyz, up to
+    arm.start_position_bound_m off it each way) clear of the table and of the object where it
+    stands (placement.expected_xy + placement.offset). A start on or in the table top (world
+    z = 0) is a pose the simulated table does not let the hand take; a start with the body or
+    a finger inside the object is one no real trial begins from (the contact solver would
+    push them apart at the first step). The object is taken as the upright cylinder about
+    its footprint (a box's diagonal: any yaw), from the table top to its height."""
+    x, y, z = scenario.arm.initial_gripper_xyz
+    margin = scenario.arm.start_position_bound_m
+    parts = _open_hand_parts()
+    lowest = z - max(part[4] for part in parts) - margin
+    if lowest <= 0.0:
+        require(False, source, "arm.initial_gripper_xyz",
+                f"puts the open hand {-lowest * 1000:.0f} mm into the table top (z = 0; it "
+                f"reaches {(z - lowest) * 1000:.1f} mm below the grasp frame, "
+                "arm.start_position_bound_m included): start it higher, e.g. "
+                "[0.69, 0.0, 0.145] m", list(scenario.arm.initial_gripper_xyz))
+    obj = scenario.object
+    size = obj.size
+    radius = size[0] / 2 if obj.shape == "cylinder" else math.hypot(size[0], size[1]) / 2
+    cx, cy = scenario.placement.xy()
+    for back, front, right, left, half_z in parts:
+        near_x = min(max(cx, x + back - margin), x + front + margin)
+        near_y = min(max(cy, y + right - margin), y + left + margin)
+        overlaps_xy = math.hypot(cx - near_x, cy - near_y) < radius
+        if overlaps_xy and z - half_z - margin < obj.height():
+            require(False, source, "arm.initial_gripper_xyz",
+                    f"starts the open hand's body or a finger inside the object "
+                    f"'{obj.name}' at ({cx:.3f}, {cy:.3f}) m (placement.expected_xy + "
+                    "placement.offset): start the hand behind or above it, or move it",
+                    list(scenario.arm.initial_gripper_xyz))
 
 
 def script_duration(scenario: Scenario) -> float:
@@ -383,6 +479,7 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
     if problem:
         field, words, value = problem
         require(False, source, f"arm.{field}", words, value)
+    _check_start_clearance(scenario, source)
     require(not scenario.contact_geometry.pad_refinement or scenario.gripper.model == "linkage",
             source, "contact_geometry.pad_refinement", "must be 0 with gripper.model prismatic "
             "(the refined pad meshes are the linkage hand's: set gripper.model=linkage, or "

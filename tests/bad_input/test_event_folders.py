@@ -305,3 +305,50 @@ def test_events_that_are_not_a_folder_are_said_so_by_every_command(command, kind
     code, text = run_cli(command + ["--events", str(events)], capfd)
     assert_one_line_error(code, text, f"--events {events}: is a ",
                           "not a folder; give a folder of memorized events")
+
+
+# Rule: the user's events folder chosen by TEGRASP_EVENTS_DIR or XDG_DATA_HOME is read with the
+# checks --events gets: only a folder with nothing at its index path is passed over (no events
+# saved there yet); an index that is a pipe, a folder or a looping symlink is refused by name,
+# never skipped in silence for the package's events.
+_UNREADABLE_INDEXES = [
+    (lambda path: os.mkfifo(path), "is a named pipe (FIFO)"),
+    (lambda path: path.symlink_to(path.name), "Too many levels of symbolic links"),
+    (lambda path: path.mkdir(), "is a folder, not a file"),
+]
+
+
+def _user_events_folder_with(make, variable, tmp_path, monkeypatch):
+    monkeypatch.delenv("TEGRASP_EVENTS_DIR", raising=False)
+    if variable == "TEGRASP_EVENTS_DIR":
+        folder = tmp_path / "events"
+        monkeypatch.setenv(variable, str(folder))
+    else:
+        folder = tmp_path / "share" / "tegrasp" / "events"
+        monkeypatch.setenv(variable, str(tmp_path / "share"))
+    folder.mkdir(parents=True)
+    make(folder / event_file.INDEX_FILE)
+    return folder
+
+
+@pytest.mark.parametrize("variable", ["TEGRASP_EVENTS_DIR", "XDG_DATA_HOME"])
+@pytest.mark.parametrize("make, words", _UNREADABLE_INDEXES)
+def test_an_unreadable_index_in_the_users_events_folder_is_refused_by_plot_events(
+        make, words, variable, tmp_path, monkeypatch, capfd):
+    folder = _user_events_folder_with(make, variable, tmp_path, monkeypatch)
+    code, text = run_cli(["plot", "events", "--out", str(tmp_path / "events.png")], capfd)
+    assert_one_line_error(code, text, str(folder / event_file.INDEX_FILE), words)
+    assert code == 1 and not (tmp_path / "events.png").exists(), text
+
+
+@pytest.mark.parametrize("variable", ["TEGRASP_EVENTS_DIR", "XDG_DATA_HOME"])
+@pytest.mark.parametrize("command", [["trial"], ["sweep", "--dry-run"]])
+def test_an_unreadable_index_in_the_users_events_folder_is_refused_by_every_reader(
+        command, variable, tmp_path, monkeypatch, capfd):
+    make, words = _UNREADABLE_INDEXES[0]
+    folder = _user_events_folder_with(make, variable, tmp_path, monkeypatch)
+    code, text = run_cli([*command, "--out", str(tmp_path / "run")], capfd)
+    assert_one_line_error(code, text, str(folder / event_file.INDEX_FILE), words)
+    assert code == 1, text
+    with pytest.raises(event_file.MemorizedEventError, match=words.split(" (")[0]):
+        events_folder.events_folder_of(paths.events_search_path(), "box")  # `tegrasp hardware`

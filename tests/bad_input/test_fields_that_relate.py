@@ -106,3 +106,69 @@ def test_the_deepest_object_the_hand_takes_loads():
         "object.name=crate", "object.shape=box", f"object.size=[{deepest}, 0.08, 0.1]",
         "object.mass=0.1", "object.friction=0.5"])
     assert scenario.object.size[0] == deepest
+
+
+# Rule: a pose of the grasp the arm cannot take is refused at load, naming the fields that
+# place it: a move out of the JACO2's reach (the hand speed check found no joint angles for
+# it), and a start pose in the table or with the object already within the open hand.
+@pytest.mark.parametrize("overrides", [
+    ["placement.expected_xy=[0.0,0.0]"],  # the object at the arm's base
+    ["placement.expected_xy=[0.1,0.0]"],
+    ["arm.initial_gripper_xyz=[0.0,0.0,0.145]"],  # the hand at the arm's base
+])
+@pytest.mark.parametrize("controller", ["memorized", "open_loop"])
+def test_a_move_out_of_the_arms_reach_is_refused_naming_the_fields_that_place_it(
+        overrides, controller):
+    refusal(lambda: T.LoadScenario(name="box", controller=controller, overrides=overrides),
+            "'arm.initial_gripper_xyz', 'placement.expected_xy', 'grasp.grasp_height'",
+            "the Reach phase", "out of the JACO2's reach")
+
+
+@pytest.mark.parametrize("start", ["[0.69,0.0,0.0]", "[0.69,0.0,0.03]", "[0.65,0.1,0.037]"])
+def test_a_start_pose_in_the_table_is_refused(start):
+    refusal(lambda: T.LoadScenario(name="box", overrides=[f"arm.initial_gripper_xyz={start}"]),
+            "'arm.initial_gripper_xyz'", "into the table top")
+
+
+@pytest.mark.parametrize("overrides", [
+    ["arm.initial_gripper_xyz=[0.72,0.03,0.055]"],  # a finger through the box's side
+    ["arm.initial_gripper_xyz=[0.75,0.0,0.055]"],  # the palm through its front
+    ["arm.initial_gripper_xyz=[0.69,0.0,0.145]", "placement.offset=[-0.1,0.0]"],  # the body
+])
+def test_a_start_pose_with_the_hand_inside_the_object_is_refused(overrides):
+    refusal(lambda: T.LoadScenario(name="box", overrides=overrides),
+            "'arm.initial_gripper_xyz'", "a finger inside the object 'box'",
+            "placement.expected_xy + placement.offset")
+
+
+@pytest.mark.parametrize("name", ["box", "thick_cylinder", "thin_cylinder"])
+def test_a_start_with_the_open_pads_about_the_object_loads(name):
+    # the station's squeeze tests start here: the object between the open pads, 20 mm or
+    # more from each
+    T.LoadScenario(name=name, overrides=["arm.initial_gripper_xyz=[0.72,0.0,0.055]"])
+
+
+@pytest.mark.parametrize("name", ["box", "thick_cylinder", "thin_cylinder"])
+def test_the_default_start_is_clear_of_the_table_and_each_object(name):
+    assert T.LoadScenario(name=name).arm.initial_gripper_xyz == [0.69, 0.0, 0.145]
+    # just above the tallest object (120 mm): the fingers 10 mm thick about the grasp axis
+    T.LoadScenario(name=name, overrides=["arm.initial_gripper_xyz=[0.69,0.0,0.131]"])
+
+
+def test_the_command_line_refuses_an_object_at_the_arms_base_before_simulating(tmp_path,
+                                                                              capfd):
+    from tests.bad_input.probes import assert_one_line_error, run_cli
+    code, text = run_cli(["trial", "--out", str(tmp_path / "run"), "--set",
+                          "placement.expected_xy=[0.0,0.0]"], capfd)
+    assert_one_line_error(code, text, "'placement.expected_xy'", "out of the JACO2's reach")
+    assert code == 1 and not (tmp_path / "run").exists(), text
+
+
+def test_a_sweep_grid_putting_the_object_into_the_hand_is_refused(tmp_path, capfd):
+    from tests.bad_input.probes import assert_one_line_error, run_cli
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[-0.1, 0.0]]\n")
+    code, text = run_cli(["sweep", "--dry-run", "--spec", str(spec), "--out",
+                          str(tmp_path / "out")], capfd)
+    assert_one_line_error(code, text, "'arm.initial_gripper_xyz'", "inside the object")
