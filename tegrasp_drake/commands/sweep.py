@@ -399,10 +399,11 @@ def run(args) -> int:
             check_events_folder(args.events)
             if args.trial_function == DEFAULT_TRIAL_FUNCTION:
                 from tegrasp_drake.sweep.spec import expand_trials
-                from tegrasp_drake.sweep.trial_function import check_sweep_events
+                from tegrasp_drake.sweep.trial_function import (SweepEventsError,
+                                                                check_sweep_events)
                 try:
                     check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
-                except ConfigError as error:  # an event file missing or damaged: bad input, 1
+                except SweepEventsError as error:  # an event file missing or damaged: bad input, 1
                     print(f"tegrasp sweep: error: {error}", file=sys.stderr)
                     return 1
             if args.events:

@@ -14,6 +14,7 @@ from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.sweep.records import canonical_json
 from tegrasp_drake.scenario.trial_log_file import save_log_copy
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, OUTPUT_FOLDER, PathLike, public_api
+from tegrasp_drake.rig.typed_yaml import ConfigError
 
 logger = logging.getLogger(__name__)
 
@@ -78,12 +79,17 @@ def trial_events(trial: dict, events_dir=None) -> tuple:
     return scenario, events, corrective_events
 
 
+class SweepEventsError(ConfigError):
+    """A sweep trial's memorized events missing or unusable: bad input (exit 1), unlike a
+    trial's scenario refused, which refuses the spec (ConfigError, exit 2)."""
+
+
 def check_sweep_events(trials, events_dir=None) -> None:
-    """ConfigError naming the trial, file and remedy when a trial's events are missing or of another
-    object (once per object and controller, before anything runs); a warning for another hand's."""
+    """SweepEventsError naming the trial, file and remedy when a trial's events are missing or
+    of another object (once per object and controller, before anything runs); a warning for
+    another hand's. ConfigError when the trial's scenario is refused (the spec's fault)."""
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.scenario.scenario_events import another_worlds_events
-    from tegrasp_drake.rig.typed_yaml import ConfigError
     checked = set()
     for trial in trials:
         key = (trial["object_name"], trial["controller"])
@@ -93,8 +99,8 @@ def check_sweep_events(trials, events_dir=None) -> None:
         try:
             scenario, events, _ = trial_events(trial, events_dir)
         except MemorizedEventError as error:
-            raise ConfigError(f"trial {trial['trial_id']} ({trial['controller']} on "
-                              f"'{trial['object_name']}'): {error}") from None
+            raise SweepEventsError(f"trial {trial['trial_id']} ({trial['controller']} on "
+                                   f"'{trial['object_name']}'): {error}") from None
         warning = events and another_worlds_events(scenario, events)
         if warning:
             logger.warning(warning)
@@ -123,9 +129,8 @@ def events_identity(events: dict | None, corrective_events: dict | None,
 def events_identities(trials, events_dir=None) -> dict[str, dict | None]:
     """{trial id: events_identity} of sweep trials (TrialSpec.to_dict()) from `events_dir` as
     run_trial_from_spec reads them, the events loaded once per object, controller and
-    overrides. ConfigError naming the trial, as check_sweep_events, for missing events."""
+    overrides. SweepEventsError naming the trial, as check_sweep_events, for missing events."""
     from tegrasp_drake.events import MemorizedEventError
-    from tegrasp_drake.rig.typed_yaml import ConfigError
     identities, by_setting = {}, {}
     for trial in trials:
         setting = canonical_json([trial["object_name"], trial["controller"],
@@ -135,8 +140,8 @@ def events_identities(trials, events_dir=None) -> dict[str, dict | None]:
             try:
                 _, events, corrective_events = trial_events(trial, events_dir)
             except MemorizedEventError as error:
-                raise ConfigError(f"trial {trial['trial_id']} ({trial['controller']} on "
-                                  f"'{trial['object_name']}'): {error}") from None
+                raise SweepEventsError(f"trial {trial['trial_id']} ({trial['controller']} on "
+                                       f"'{trial['object_name']}'): {error}") from None
             by_setting[setting] = events_identity(events, corrective_events, events_dir)
         identities[trial["trial_id"]] = by_setting[setting]
     return identities
@@ -149,7 +154,6 @@ def run_trial_from_spec(trial: dict, *,
     """The sweep's trial function: runs `trial` (a TrialSpec.to_dict()) and returns its result
     dict (its log also in `log_dir`); ConfigError when it is no sweep trial; LogNotWritten,
     carrying the result, when the log cannot be written in `log_dir`."""
-    from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.sweep.spec import trial_dict_problem
     problem = trial_dict_problem(trial)
     if problem:

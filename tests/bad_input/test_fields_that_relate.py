@@ -172,3 +172,4 @@ def test_a_sweep_grid_putting_the_object_into_the_hand_is_refused(tmp_path, capf
     code, text = run_cli(["sweep", "--dry-run", "--spec", str(spec), "--out",
                           str(tmp_path / "out")], capfd)
     assert_one_line_error(code, text, "'arm.initial_gripper_xyz'", "inside the object")
+    assert code == 2, text  # a spec whose trial is refused is a spec refused, not missing events
