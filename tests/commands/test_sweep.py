@@ -186,6 +186,22 @@ def test_dry_run_prints_the_plan_and_runs_nothing(tmp_path, capsys):
     assert not out.exists()
 
 
+def test_dry_run_refuses_a_folder_another_run_is_writing_as_the_run_does(tmp_path, capfd):
+    from tegrasp_drake.rig.files import held_folder
+    from tests.bad_input.probes import assert_one_line_error, run_cli
+    spec = tmp_path / "one.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0]]\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    with held_folder(out):  # another sweep, still running
+        code, text = run_cli(["sweep", "--spec", str(spec), "--dry-run", "--out", str(out),
+                              *FAKE], capfd)
+    assert_one_line_error(code, text, "another run (a trial, sweep, transfer or sensitivity "
+                          "study) is writing there now")
+    assert code == 1, text
+
+
 @pytest.mark.parametrize("attempts, code, stream, words", [
     # One object, marker, attempt and controller read "1 object", not "1 objects".
     (1, 0, "out", "1 trial (1 object x 1 marker x 1 attempt x 1 controller)"),
