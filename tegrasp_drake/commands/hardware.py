@@ -19,6 +19,7 @@ from tegrasp_drake.rig.files import (free_space_problem, interruptions_deferred,
                                      output_file_problem)
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, shorten
 from tegrasp_drake.rig.number_text import count_text
+from tegrasp_drake.rig.typed_yaml import config_set_option
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
@@ -53,7 +54,7 @@ def register(subparsers) -> None:
                         help="hardware config YAML (HardwareStationConfig fields); default: "
                         "the scenario's `station: !HardwareStationConfig {...}`")
     parser.add_argument("--config-set", dest="config_overrides", action="append", default=[],
-                        metavar="KEY=VALUE", help="override a hardware config field, e.g. "
+                        type=config_set_option, metavar="KEY=VALUE", help="override a hardware config field, e.g. "
                         "--config-set tactile.port=/dev/ttyACM1")
     add_scenario_arguments(parser)
     add_events_argument(parser)

@@ -297,24 +297,30 @@ def set_words(assignment: str) -> str:
     return f"--set '{shorten(key)}{equals}{shorten(text)}'"
 
 
-def assignment_problem(assignment: str) -> str | None:
-    """Why `assignment` is no `KEY=VALUE` with KEY a dotted field name, each of its names
-    given (not '', '.a', 'a..b' or 'a.'), in words that follow "--set 'ASSIGNMENT': "; None
-    if it is one."""
+def assignment_problem(assignment: str, example: str = "object.mass") -> str | None:
+    """Why `assignment` is no `KEY=VALUE` with KEY a dotted field name (such as `example`),
+    each of its names given (not '', '.a', 'a..b' or 'a.'), in words that follow
+    "--set 'ASSIGNMENT': "; None if it is one."""
     key, equals, _ = assignment.partition("=")
     if not equals or any(not name.strip() for name in key.split(".")):
-        return "expected KEY=VALUE with KEY a dotted field name such as object.mass"
+        return f"expected KEY=VALUE with KEY a dotted field name such as {example}"
     return None
 
 
-def set_option(text: str) -> str:
-    """argparse's type of --set: the assignment as given, or a usage error (exit 2) naming
-    it (assignment_problem); '' is left to the command line's refusal of empty values."""
-    problem = assignment_problem(text) if text else None
+def set_option(text: str, example: str = "object.mass") -> str:
+    """argparse's type of --set (a scenario field, such as `example`): the assignment as
+    given, or a usage error (exit 2) naming it (assignment_problem); '' is left to the
+    command line's refusal of empty values."""
+    problem = assignment_problem(text, example) if text else None
     if problem:
         # argparse puts "argument --set: " before it
         raise argparse.ArgumentTypeError(f"{set_words(text).removeprefix('--set ')}: {problem}")
     return text
+
+
+def config_set_option(text: str) -> str:
+    """argparse's type of --config-set (a hardware config field): as set_option's."""
+    return set_option(text, example="tactile.port")
 
 
 def assignment_key(assignment: str) -> str:

@@ -433,18 +433,21 @@ def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, wo
 
 
 # Rule: a --set that is no KEY=VALUE with KEY a dotted field name (an empty key or name, no
-# '=') is a command line that does not parse, refused as `--set ''` is, with exit code 2.
-@pytest.mark.parametrize("command", ["trial", "record-events", "sweep"])
+# '=') is a command line that does not parse, refused as `--set ''` is, with exit code 2; so
+# is such a --config-set (a hardware config's field), its example one of that config's.
+@pytest.mark.parametrize("command, option, example", [
+    ("trial", "--set", "object.mass"), ("record-events", "--set", "object.mass"),
+    ("sweep", "--set", "object.mass"), ("hardware", "--config-set", "tactile.port")])
 @pytest.mark.parametrize("assignment", ["=", "=0.2", ".object.mass=0.2", "object..mass=0.2",
                                         "object.=0.2", " =0.2", "object.mass"])
-def test_a_malformed_set_is_refused_as_a_command_line_that_does_not_parse(command, assignment,
-                                                                          capfd):
-    code, text = run_cli([command, "--set", assignment], capfd)
+def test_a_malformed_set_is_refused_as_a_command_line_that_does_not_parse(
+        command, option, example, assignment, capfd):
+    code, text = run_cli([command, option, assignment], capfd)
     assert code == 2, text
     assert text.count("\n") == 1 and "unknown field" not in text, text
     assert text.startswith(
-        f"tegrasp {command}: error: argument --set: '{assignment}': expected KEY=VALUE with KEY "
-        "a dotted field name such as object.mass (see "), text
+        f"tegrasp {command}: error: argument {option}: '{assignment}': expected KEY=VALUE with "
+        f"KEY a dotted field name such as {example} (see "), text
 
 
 def test_an_empty_set_keeps_its_own_refusal_and_code(capfd):
