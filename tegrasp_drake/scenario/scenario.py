@@ -284,12 +284,12 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
     from tegrasp_drake.control.motion_profiles import (MINIMUM_JERK_PEAK_SPEED,
                                                        minimum_jerk_slope)
     for field, distance, duration, what, paths in _hand_moves(scenario):
-        # each duration's declared range excludes 0; a config that skipped check_ranges
-        # must not divide by it below
+        if distance <= 0:  # no move (the Settle and Hold phases): it may take no time
+            continue
+        # a move's duration must not be 0 below (a controller move's declared range excludes
+        # it; a config that skipped check_ranges must not divide by it)
         require(duration > 0, source, field, "must be positive [s]: the arm cannot move the "
                 f"hand in no time ({what})", duration)
-        if distance <= 0:
-            continue
         shortest, binding = 0.0, math.inf  # [s], the top speed [m/s] where it binds
         for start, end in paths:
             tops = move_top_speeds_mps(start, end)
