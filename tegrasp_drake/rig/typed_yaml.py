@@ -32,10 +32,13 @@ from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_lin
 
 class ConfigError(ValueError):
     """A configuration file, field or value is wrong; the message names it, on one line (a
-    line break inside a value it quotes is shown as \\n)."""
+    line break inside a value it quotes is shown as \\n). `where`: the place in the text
+    ("line N, column M"), when parse_yaml found it, for a caller that words the error itself
+    (one that must not quote a file's content still says where)."""
 
-    def __init__(self, message: str = ""):
+    def __init__(self, message: str = "", *, where: str | None = None):
         super().__init__(error_line(str(message)))
+        self.where = where
 
 
 class YamlSyntaxError(ConfigError):
@@ -186,7 +189,8 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
     except yaml.YAMLError as e:
         problem = (_over_long_key(text, e, line_offset)
                    or _yaml_problem(e, line_offset, column_offset))
-        raise YamlSyntaxError(f"{source}: not valid YAML: {problem}") from None
+        raise YamlSyntaxError(f"{source}: not valid YAML: {problem}",
+                              where=_error_place(e, line_offset, column_offset)) from None
     except RecursionError:
         raise ConfigError(f"{source}: the YAML nests deeper than Python's recursion limit "
                           f"({sys.getrecursionlimit()} levels); no configuration nests more "
@@ -211,14 +215,14 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
         if node.tag.startswith("tag:yaml.org,2002:python/"):
             raise ConfigError(f"{source}: {where(node)}: a Python object tag "
                               f"(!!{node.tag.split(':', 2)[2]}) is never loaded; give a "
-                              "plain value")
+                              "plain value", where=where(node))
         if node.tag == "tag:yaml.org,2002:int" and isinstance(node, yaml.ScalarNode):
             try:
                 read_integer(node.value)
             except IntegerTextError as e:
                 field = f"field '{path}' " if path else ""
                 raise ConfigError(f"{source}: {field}({where(node)}) {e}; write a number in "
-                                  "the field's range") from None
+                                  "the field's range", where=where(node)) from None
         total = 1
         if isinstance(node, yaml.MappingNode):
             seen = {}
@@ -228,7 +232,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                             if isinstance(key, yaml.ScalarNode) else
                             "a list" if isinstance(key, yaml.SequenceNode) else "a mapping")
                     raise ConfigError(f"{source}: {where(key)}: a key must be a name (text), "
-                                      f"got {what}"[:300])
+                                      f"got {what}"[:300], where=where(key))
                 if isinstance(key, yaml.ScalarNode):  # a merge key '<<' too
                     if key.value in seen:
                         merging = key.tag == "tag:yaml.org,2002:merge"
@@ -236,7 +240,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                             f"{source}: key '{key.value}' appears twice ({seen[key.value]} "
                             f"and {where(key)}); keep one"
                             + ("; to merge several mappings give one '<<' a list of them"
-                               if merging else ""))
+                               if merging else ""), where=where(key))
                     seen[key.value] = where(key)
                 name = str(key.value) if isinstance(key, yaml.ScalarNode) else "<<"
                 if not path and root_key is not None:
@@ -247,11 +251,12 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
         if total > MAX_YAML_NODES and len(sizes) > MAX_YAML_NODES:  # written, not aliased
             raise ConfigError(f"{source}: holds more than {MAX_YAML_NODES} values (keys, "
                               f"values and entries; {where(node)}); a configuration is "
-                              "smaller: split the file, or keep only the entries you use")
+                              "smaller: split the file, or keep only the entries you use",
+                              where=where(node))
         if total > MAX_YAML_NODES:
             raise ConfigError(f"{source}: the YAML's aliases expand to more than "
                               f"{MAX_YAML_NODES} values ({where(node)}); write the values "
-                              "out, or use fewer nested aliases")
+                              "out, or use fewer nested aliases", where=where(node))
         sizes[id(node)] = total
         return total
 
@@ -278,14 +283,22 @@ def _over_long_key(text: str, error: yaml.YAMLError, line_offset: int = 0) -> st
             f"most {MAX_YAML_KEY_CHARS} characters")
 
 
+def _error_place(error: yaml.YAMLError, line_offset: int = 0,
+                 column_offset: int = 0) -> str | None:
+    """Where a YAML error is, "line N, column M" in the text given; None if PyYAML did not
+    say."""
+    mark = getattr(error, "problem_mark", None)
+    if mark is None:
+        return None
+    column = mark.column + 1 - (column_offset if mark.line == line_offset else 0)
+    return f"line {mark.line + 1 - line_offset}, column {max(column, 1)}"
+
+
 def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: int = 0) -> str:
     """A YAML error in one line: what and where (line, column in the text given)."""
-    mark = getattr(error, "problem_mark", None)
+    place = _error_place(error, line_offset, column_offset)
     problem = getattr(error, "problem", None) or str(error).splitlines()[0]
-    where = ""
-    if mark is not None:
-        column = mark.column + 1 - (column_offset if mark.line == line_offset else 0)
-        where = f"line {mark.line + 1 - line_offset}, column {max(column, 1)}: "
+    where = f"{place}: " if place else ""
     context = getattr(error, "context", None)
     return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 

@@ -300,3 +300,15 @@ def test_a_file_that_is_no_calibration_is_refused_without_its_content(tmp_path, 
                           "--log", str(tmp_path / "run.lcmlog")], capfd)
     assert_one_line_error(code, text, "field 'tactile.calibration_file'", words)
     assert code == 1 and "secret" not in text.replace(str(tmp_path), "")
+
+
+@pytest.mark.parametrize("content, where", [
+    ("left:\n  gain: [1.0e-3]\n  offset: [unclosed\n", "line 4, column 1"),
+    ("left: {}\nright: {}\nleft: {}\n", "line 3, column 1"),
+])
+def test_a_calibration_that_is_not_yaml_is_refused_saying_where_without_its_content(
+        tmp_path, content, where):
+    (tmp_path / "private").write_text(content.replace("left", "secret_left"))
+    message = refusal(lambda: LoadTactileCalibration(tmp_path / "private"),
+                      f"{tmp_path / 'private'}: {where}: is not a tactile calibration")
+    assert "secret" not in message.replace(str(tmp_path), ""), message
