@@ -303,11 +303,45 @@ def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: in
     return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 
 
-def set_words(assignment: str) -> str:
-    """How an error names a --set assignment: `--set 'KEY=VALUE'`, the value cut to about
-    ECHO_CHARS."""
+def set_words(assignment: str, option: str = "--set") -> str:
+    """How an error names a --set assignment (or one of another `option`, such as
+    --config-set): `--set 'KEY=VALUE'`, the value cut to about ECHO_CHARS."""
     key, equals, text = assignment.partition("=")
-    return f"--set '{shorten(key)}{equals}{shorten(text)}'"
+    return f"{option} '{shorten(key)}{equals}{shorten(text)}'"
+
+
+def _echo(assignment: str) -> str:
+    """An assignment as an error's source names it (`KEY=VALUE`), its parts cut (shorten)."""
+    key, equals, value = assignment.partition("=")
+    return shorten(key) + equals + shorten(value)
+
+
+# A source longer than this names only the assignments at fault (loaded_with_overrides).
+MAX_SOURCE_CHARACTERS = 200
+
+
+def loaded_with_overrides(load, file_source: str, overrides: typing.Sequence[str],
+                          option: str = "--set"):
+    """load(source) for a configuration read from a file and changed by the command line's
+    `option` assignments (--set, --config-set): a ConfigError it raises names them as its
+    source (`FILE --set 'KEY=VALUE'`), so that a bad value given on the command line is not
+    blamed on the file. When the whole list is long (over MAX_SOURCE_CHARACTERS: a preset's
+    or a sweep's many assignments would bury the one at fault) only the assignments whose
+    setting the message names are kept, with how many others there were; a short list stays
+    whole: a rule across settings may be broken by one it does not name."""
+    source = file_source + "".join(f" {option} {_echo(a)}" for a in overrides)
+    try:
+        return load(source)
+    except ConfigError as error:
+        message = str(error)
+        if not message.startswith(source) or len(source) <= MAX_SOURCE_CHARACTERS:
+            raise
+        rest = message[len(source):]
+        named = [a for a in overrides if f"'{assignment_key(a)}" in rest]
+        others = len(overrides) - len(named)
+        raise ConfigError(file_source + "".join(f" {option} {_echo(a)}" for a in named)
+                          + (f" (and {others} other {option})" if others else "")
+                          + rest) from None
 
 
 def assignment_problem(assignment: str, example: str = "object.mass") -> str | None:
@@ -348,20 +382,22 @@ def keys_overlap(a: str, b: str) -> bool:
     return a == b or a.startswith(b + ".") or b.startswith(a + ".")
 
 
-def apply_override(data: dict, assignment: str) -> None:
-    """Sets `key.sub=value` (YAML value) in nested YAML data."""
+def apply_override(data: dict, assignment: str, option: str = "--set") -> None:
+    """Sets `key.sub=value` (YAML value) in nested YAML data; errors name the assignment as
+    given with `option` (--set, --config-set)."""
+    words = set_words(assignment, option)
     problem = assignment_problem(assignment)
     if problem:
-        raise ConfigError(f"{set_words(assignment)}: {problem}")
+        raise ConfigError(f"{words}: {problem}")
     key, text = assignment.split("=", 1)
     if not isinstance(data, dict):
-        raise ConfigError(f"{set_words(assignment)}: the document it would change is "
+        raise ConfigError(f"{words}: the document it would change is "
                           f"{_describe(data)}, not a mapping of fields; fix the file")
     if "\n" in text:
-        raise ConfigError(f"{set_words(assignment)}: the value must be on one line")
+        raise ConfigError(f"{words}: the value must be on one line")
     prefix = "value: "
     try:
-        value = (parse_yaml(prefix + text, set_words(assignment), column_offset=len(prefix),
+        value = (parse_yaml(prefix + text, words, column_offset=len(prefix),
                             root_key=key.strip())["value"] if text.strip() else "")
     except ConfigError as e:
         if "not valid YAML" not in str(e):
@@ -373,7 +409,7 @@ def apply_override(data: dict, assignment: str) -> None:
     for part in parts[:-1]:
         node = node.setdefault(part, {})
         if not isinstance(node, dict):
-            raise ConfigError(f"{set_words(assignment)}: '{shorten(part)}' is not a mapping")
+            raise ConfigError(f"{words}: '{shorten(part)}' is not a mapping")
     node[parts[-1]] = value
 
 

@@ -24,14 +24,14 @@ from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges,
-                                      check_times_resolved, declare_ranges, shorten)
+                                      check_times_resolved, declare_ranges)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
-                                          load_typed, parse_yaml, read_yaml_file_cached, require,
-                                          require_mapping)
+                                          load_typed, loaded_with_overrides, parse_yaml,
+                                          read_yaml_file_cached, require, require_mapping)
 from tegrasp_drake.simulation.capacitive_taxels import ad7147_frame_rate_hz, frame_rate_matches
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
@@ -526,34 +526,10 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                           f"{type(data).__name__} {data!r}")
     for assignment in overrides:
         apply_override(data, assignment)
-    # A bad value given with --set is named as such, not as the file's (_culprits_named).
-    source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
-    try:
-        return _checked_scenario(data, source, controller=controller, allow_long=allow_long,
-                                 on_ignored=on_ignored)
-    except ConfigError as error:
-        raise ConfigError(_culprits_named(str(error), source, f"{path} [{name}]",
-                                          overrides)) from None
-
-
-# A source longer than this names only the --set assignments at fault (_culprits_named).
-MAX_SOURCE_CHARACTERS = 200
-
-
-def _culprits_named(message: str, source: str, file_source: str,
-                    overrides: typing.Sequence[str]) -> str:
-    """`message` (which begins with `source`: the file, its entry and every --set), its
-    source cut to the --set assignments whose setting the message names, and how many others
-    there were, when the whole list is long (over MAX_SOURCE_CHARACTERS): a preset's or a
-    sweep's many assignments would bury the one at fault. A short list stays whole: a rule
-    across settings may be broken by one it does not name."""
-    if not message.startswith(source) or len(source) <= MAX_SOURCE_CHARACTERS:
-        return message
-    rest = message[len(source):]
-    named = [a for a in overrides if f"'{a.partition('=')[0].strip()}" in rest]
-    others = len(overrides) - len(named)
-    return (file_source + "".join(f" --set {_echo(a)}" for a in named)
-            + (f" (and {others} other --set)" if others else "") + rest)
+    return loaded_with_overrides(
+        lambda source: _checked_scenario(data, source, controller=controller,
+                                         allow_long=allow_long, on_ignored=on_ignored),
+        f"{path} [{name}]", overrides)
 
 
 def _checked_scenario(data: dict, source: str, *, controller, allow_long, on_ignored):
@@ -618,12 +594,6 @@ def rechecked(scenario: Scenario, source: str) -> Scenario:
     returned with its object resolved (a bare Scenario() is the built-in box). A long grasp
     script is accepted: that limit is LoadScenario's allow_long."""
     return validate(scenario, source, allow_long=True, loaded=True)
-
-
-def _echo(assignment: str) -> str:
-    """A --set assignment as an error's source names it, its value cut (ranges.shorten)."""
-    key, equals, value = assignment.partition("=")
-    return shorten(key) + equals + shorten(value)
 
 
 @public_api

@@ -268,6 +268,21 @@ def test_a_nul_in_a_config_set_port_is_bad_input(tmp_path, capfd):
     assert code == 1
 
 
+@pytest.mark.parametrize("assignment, words", [
+    ("ready_timeout=-5", "field 'ready_timeout' must be positive"),
+    ("watchdog.arm_timeout=0", "field 'watchdog.arm_timeout' must be positive"),
+    ("tactile.max_backlog=many", "field 'tactile.max_backlog'"),
+])
+def test_a_config_set_value_wrong_for_its_field_is_named_as_the_option(tmp_path, capfd,
+                                                                       assignment, words):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set", assignment,
+                          "--log", str(tmp_path / "run.lcmlog")], capfd)
+    assert_one_line_error(code, text, f"{config} --config-set {assignment}: {words}")
+    assert code == 1
+
+
 def test_a_nul_in_a_port_set_from_python_is_refused_by_the_builder():
     from tegrasp_drake.hardware.station import MakeHardwareStation
     config = HardwareStationConfig()
