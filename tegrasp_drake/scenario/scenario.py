@@ -48,7 +48,7 @@ from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_datacla
 from tegrasp_drake.scenario.moved_keys import (MOVED_KEYS, migrate_stored_scenario,
                                                 refuse_moved_keys)
 from tegrasp_drake.rig.object_file import check_model_file
-from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
+from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig, footprint_radius
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
@@ -367,10 +367,11 @@ def _open_hand_parts() -> tuple[tuple[float, float, float, float, float], ...]:
             (palm, tip, -outer, -HALF_STROKE, finger_half_z))
 
 
-def _check_start_clearance(scenario: Scenario, source: str) -> None:
+def check_start_clearance(scenario: Scenario, source: str, spread_m: float = 0.0) -> None:
     """The open hand at its start pose (arm.initial_gripper_xyz, up to
     arm.start_position_bound_m off it each way) clear of the table and of the object where it
-    stands (placement.expected_xy + placement.offset). A start on or in the table top (world
+    stands (placement.expected_xy + placement.offset, and up to spread_m [m] off it along
+    each axis: a sweep's placement jitter). A start on or in the table top (world
     z = 0) is a pose the simulated table does not let the hand take; a start with the body or
     a finger inside the object is one no real trial begins from (the contact solver would
     push them apart at the first step). The object is taken as the upright cylinder about
@@ -387,17 +388,20 @@ def _check_start_clearance(scenario: Scenario, source: str) -> None:
                 "[0.69, 0.0, 0.145] m", list(scenario.arm.initial_gripper_xyz))
     obj = scenario.object
     size = obj.size
-    radius = size[0] / 2 if obj.shape == "cylinder" else math.hypot(size[0], size[1]) / 2
+    radius = footprint_radius(obj.shape, size)
     cx, cy = scenario.placement.xy()
+    reach = margin + spread_m  # the hand's start bound and the object's jitter, each way
     for back, front, right, left, half_z in parts:
-        near_x = min(max(cx, x + back - margin), x + front + margin)
-        near_y = min(max(cy, y + right - margin), y + left + margin)
+        near_x = min(max(cx, x + back - reach), x + front + reach)
+        near_y = min(max(cy, y + right - reach), y + left + reach)
         overlaps_xy = math.hypot(cx - near_x, cy - near_y) < radius
         if overlaps_xy and z - half_z - margin < obj.height():
             require(False, source, "arm.initial_gripper_xyz",
                     f"starts the open hand's body or a finger inside the object "
                     f"'{obj.name}' at ({cx:.3f}, {cy:.3f}) m (placement.expected_xy + "
-                    "placement.offset): start the hand behind or above it, or move it",
+                    "placement.offset"
+                    + (f", +-{spread_m * 1000:g} mm of placement jitter" if spread_m else "")
+                    + "): start the hand behind or above it, or move it",
                     list(scenario.arm.initial_gripper_xyz))
 
 
@@ -479,7 +483,7 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
     if problem:
         field, words, value = problem
         require(False, source, f"arm.{field}", words, value)
-    _check_start_clearance(scenario, source)
+    check_start_clearance(scenario, source)
     require(not scenario.contact_geometry.pad_refinement or scenario.gripper.model == "linkage",
             source, "contact_geometry.pad_refinement", "must be 0 with gripper.model prismatic "
             "(the refined pad meshes are the linkage hand's: set gripper.model=linkage, or "
