@@ -293,7 +293,7 @@ def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                     "(arm, gripper, tactile, watchdog, ...)")
     data.pop("_tag", None)
     for assignment in overrides:
-        apply_override(data, assignment, "--config-set")
+        apply_override(data, assignment, "--config-set", "tactile.port")
     return loaded_with_overrides(
         lambda source: validate_hardware_config(
             load_typed(data, HardwareStationConfig, source), source),

@@ -382,9 +382,11 @@ def keys_overlap(a: str, b: str) -> bool:
     return a == b or a.startswith(b + ".") or b.startswith(a + ".")
 
 
-def apply_override(data: dict, assignment: str, option: str = "--set") -> None:
+def apply_override(data: dict, assignment: str, option: str = "--set",
+                   example: str = "object.name") -> None:
     """Sets `key.sub=value` (YAML value) in nested YAML data; errors name the assignment as
-    given with `option` (--set, --config-set)."""
+    given with `option` (--set, --config-set); a value that is not YAML is told to quote
+    text, shown on `example`, a text field of its config."""
     words = set_words(assignment, option)
     problem = assignment_problem(assignment)
     if problem:
@@ -403,7 +405,7 @@ def apply_override(data: dict, assignment: str, option: str = "--set") -> None:
         if "not valid YAML" not in str(e):
             raise
         raise ConfigError(f"{e}; the value is YAML: quote text that holds ': ', '#', '*', "
-                          "'&', '!' or brackets, e.g. object.name='a: b'") from None
+                          f"'&', '!' or brackets, e.g. {example}='a: b'") from None
     node = data
     parts = key.strip().split(".")
     for part in parts[:-1]:

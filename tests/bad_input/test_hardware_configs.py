@@ -283,6 +283,16 @@ def test_a_config_set_value_wrong_for_its_field_is_named_as_the_option(tmp_path,
     assert code == 1
 
 
+def test_a_config_set_value_that_is_not_yaml_is_named_as_the_option(tmp_path, capfd):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set",
+                          "tactile.port=[unclosed", "--log", str(tmp_path / "run.lcmlog")],
+                         capfd)
+    assert_one_line_error(code, text, "--config-set 'tactile.port=[unclosed': not valid YAML",
+                          "e.g. tactile.port='a: b'")
+
+
 def test_a_nul_in_a_port_set_from_python_is_refused_by_the_builder():
     from tegrasp_drake.hardware.station import MakeHardwareStation
     config = HardwareStationConfig()
