@@ -15,7 +15,9 @@ import sys
 import numpy as np
 
 from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
+from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.control.controller_config import TaxelAwareControllerConfig
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.events import tactile_trial_from_log
@@ -60,7 +62,9 @@ def main(argv=None) -> int:
     parser = script_parser("choose_ensemble_thresholds", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_output("out", type=pathlib.Path)
-    parser.add_argument("--runs", type=int, nargs="+", default=[5, 6, 7])
+    parser.add_number("--runs", type=integer_option, nargs="+", default=[5, 6, 7],
+                      allowed=Range(low=0, why="the index of a run record_ensemble_events "
+                                               "wrote"))
     parser.add_argument("--events", default=str(package_events_dir()))
     args = parser.parse_args(argv)
     spans = []

@@ -10,6 +10,7 @@ from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
 from tegrasp_drake.figures.ra_transients import plot_ra_transients
 from tegrasp_drake.rig.files import UserPathError
+from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.runs.pad_strike import PadStrikeConfig, run_pad_strike
 
 TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
@@ -18,7 +19,8 @@ TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
 def main(argv=None) -> int:
     parser = script_parser("compare_ra_transients", __doc__)
     parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
-    parser.add_argument("--speed", type=float, default=0.025, help="finger speed [m/s]")
+    parser.add_number("--speed", type=float, default=0.025, help="finger speed [m/s]",
+                      allowed=Range(low=0.0, low_open=True, unit="m/s"))
     args = parser.parse_args(argv)
     try:
         check_figure_path(args.out)  # before the strikes, not after

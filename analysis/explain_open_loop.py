@@ -34,7 +34,7 @@ def main(argv=None) -> int:
     from tegrasp_drake.commands.script_output import refuse_unusable_output, script_parser
     parser = script_parser("explain_open_loop", __doc__)
     parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
-    parser.add_argument("--workers", type=int, default=2)
+    parser.add_workers()
     args = parser.parse_args(argv)
     from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_path,
                                                     save_figure)

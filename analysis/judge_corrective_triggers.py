@@ -35,7 +35,7 @@ def main(argv=None) -> int:
     from tegrasp_drake.commands.script_output import refuse_unusable_output, script_parser
     parser = script_parser("judge_corrective_triggers", __doc__)
     parser.add_argument("out", type=pathlib.Path)
-    parser.add_argument("--workers", type=int, default=2)
+    parser.add_workers()
     args = parser.parse_args(argv)
     refuse_unusable_output("judge_corrective_triggers", args.out)
     jobs = [(label, force, time, trigger) for label, force, time in HITS

@@ -20,7 +20,9 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script, script_parser
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
+from tegrasp_drake.rig.ranges import SEED_RANGE
 from tegrasp_drake.rig.files import JSON_ARRAY_START, write_atomically
 from tegrasp_drake.rig.typed_yaml import set_option
 
@@ -58,8 +60,8 @@ def main(argv=None) -> int:
     parser.add_argument("--events", default=str(package_events_dir()))
     parser.add_argument("--objects", nargs="+",
                         default=["box", "thick_cylinder", "thin_cylinder"])
-    parser.add_argument("--seed", type=int, default=600)
-    parser.add_argument("--workers", type=int, default=2)
+    parser.add_number("--seed", type=integer_option, default=600, allowed=SEED_RANGE)
+    parser.add_workers()
     parser.add_argument("--set", dest="overrides", action="append", default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a scenario field of every trial")

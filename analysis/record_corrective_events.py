@@ -40,7 +40,7 @@ def main(argv=None) -> int:
     parser = script_parser("record_corrective_events", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("--object", default="box")
-    parser.add_argument("--workers", type=int, default=2)
+    parser.add_workers()
     parser.add_argument("--events", type=pathlib.Path, default=package_events_dir())
     args = parser.parse_args(argv)
     refuse_unusable_folders("record_corrective_events", args.logs / args.object,

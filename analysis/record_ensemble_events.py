@@ -15,7 +15,9 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script, script_parser
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
+from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.recording.campaign import (first_unwritten_log, run_log_path, simulate_run,
                                               unwritten_log_words)
@@ -37,13 +39,14 @@ def simulate(job) -> None:
 def main(argv=None) -> int:
     parser = script_parser("record_ensemble_events", __doc__)
     parser.add_argument("logs", type=pathlib.Path)
-    parser.add_argument("--runs", type=int, default=8)
-    parser.add_argument("--template-runs", type=int, default=5)
-    parser.add_argument("--workers", type=int, default=2)
+    parser.add_number("--runs", type=integer_option, default=8, allowed=Range(low=1))
+    parser.add_number("--template-runs", type=integer_option, default=5, allowed=Range(low=1))
+    parser.add_workers()
     parser.add_argument("--events", type=pathlib.Path, default=package_events_dir())
     args = parser.parse_args(argv)
-    if not 0 < args.template_runs <= args.runs:
-        raise SystemExit("record_ensemble_events: --template-runs must be 1..--runs")
+    if args.template_runs > args.runs:
+        raise SystemExit(f"record_ensemble_events: error: --template-runs must be at most "
+                         f"--runs ({args.runs}), got {args.template_runs}")
     refuse_unusable_folders("record_ensemble_events",
                             *(args.logs / name for name in sorted(BUILTIN_OBJECTS)),
                             args.events / ENSEMBLE_FOLDER)

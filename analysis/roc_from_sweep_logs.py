@@ -18,7 +18,9 @@ import sys
 import numpy as np
 
 from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
+from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.control.controller_registry import controller_named
 from tegrasp_drake.control.grasp_controller import controller_events_folders
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
@@ -52,7 +54,8 @@ def main(argv=None) -> int:
     parser.add_output("out", type=pathlib.Path)
     parser.add_argument("--controller", default="taxel_aware")
     parser.add_argument("--events", default=str(package_events_dir()))
-    parser.add_argument("--limit", type=int, default=None)
+    parser.add_number("--limit", type=integer_option, default=None, allowed=Range(low=1),
+                      help="score at most this many logs (default: all)")
     parser.add_argument("--gripper-model", default="linkage",
                         help="the hand the logs were simulated on (its chosen thresholds)")
     args = parser.parse_args(argv)

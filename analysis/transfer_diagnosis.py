@@ -16,6 +16,8 @@ import pathlib
 import sys
 
 from tegrasp_drake.commands.script_output import run_script, script_parser
+from tegrasp_drake.rig.event_matching import EventMatchingConfig
+from tegrasp_drake.rig.ranges import field_range
 from tegrasp_drake.events.events_folder import load_memorized_events
 from tegrasp_drake.events.replay import tactile_trial_from_log
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
@@ -36,7 +38,8 @@ def main(argv=None) -> int:
     parser = script_parser("transfer_diagnosis", __doc__)
     parser.add_argument("events", help="the events folder the trials read")
     parser.add_argument("runs", nargs="+", help="trial folders (tegrasp trial --out)")
-    parser.add_argument("--ra-envelope-hz", type=float, default=0.0)
+    parser.add_number("--ra-envelope-hz", type=float, default=0.0,
+                      allowed=field_range(EventMatchingConfig, "ra_envelope_hz"))
     args = parser.parse_args(argv)
     for run in map(pathlib.Path, args.runs):
         if not (run / "trial.npz").is_file() or not (run / "result.json").is_file():

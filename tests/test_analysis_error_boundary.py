@@ -102,6 +102,39 @@ def test_a_figure_name_of_no_format_is_bad_input_not_a_command_line_error(name, 
     assert list(tmp_path.iterdir()) == []
 
 
+# Each script's numeric options, one family a row: a number that parses but lies outside its
+# range is refused before any work as the package's commands refuse one (`tegrasp sweep
+# --workers 0`): bad input, one line naming the option and its range.
+@pytest.mark.parametrize("name, arguments, words", [
+    ("explain_open_loop", ["out.png", "--workers", "0"], "--workers must be at least 1, got 0"),
+    ("judge_corrective_triggers", ["out.md", "--workers", "-2"], "--workers must be at least 1"),
+    ("measure_load_lift", ["--workers", "0"], "--workers must be at least 1"),
+    ("measure_load_lift", ["--seed", "-1"], "--seed must lie in [0, 4294967295]"),
+    ("record_corrective_events", ["logs", "--workers", "0"], "--workers must be at least 1"),
+    ("record_ensemble_events", ["logs", "--workers", "0"], "--workers must be at least 1"),
+    ("record_ensemble_events", ["logs", "--runs", "-3"], "--runs must be at least 1, got -3"),
+    ("record_ensemble_events", ["logs", "--template-runs", "0"],
+     "--template-runs must be at least 1"),
+    ("record_ensemble_events", ["logs", "--runs", "2", "--template-runs", "3"],
+     "--template-runs must be at most --runs (2), got 3"),
+    ("choose_ensemble_thresholds", ["logs", "out.md", "--runs", "5", "-3"],
+     "--runs must be at least 0 (the index of a run"),
+    ("roc_from_sweep_logs", ["logs", "out.md", "--limit", "0"], "--limit must be at least 1"),
+    ("compare_ra_transients", ["out.png", "--speed", "-0.1"], "--speed must be above 0 m/s"),
+    ("compare_ra_transients", ["out.png", "--speed", "nan"], "--speed must be above 0 m/s"),
+    ("transfer_diagnosis", ["events", "run", "--ra-envelope-hz", "-1"],
+     "--ra-envelope-hz must be 0 (no RA envelope)"),
+])
+def test_a_numeric_option_out_of_its_range_is_refused_as_bad_input(name, arguments, words,
+                                                                   tmp_path):
+    done = run_script(name, arguments, tmp_path)
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    lines = done.stderr.strip().splitlines()
+    assert lines == [f"{name}: error: {lines[0].split(': error: ', 1)[-1]}"], done.stderr
+    assert words in lines[0], lines
+    assert list(tmp_path.iterdir()) == []  # refused before any work
+
+
 def test_results_page_refuses_a_fifo_without_opening_it(tmp_path):
     fifo = tmp_path / "results.md"
     os.mkfifo(fifo)  # no writer: open() for reading would block for ever

@@ -40,6 +40,7 @@ class _ScriptParser(argparse.ArgumentParser):
         super().__init__(prog=f"{script}.py", **keywords)
         self._script = script
         self._outputs = []  # (destination, kind) of each add_output argument
+        self._ranges = []  # (destination, option, allowed) of each add_number argument
 
     def add_output(self, *names, figure: bool = False, folder: bool = False, **keywords):
         """add_argument for a file the script writes (a report; a figure when `figure`), or
@@ -52,8 +53,33 @@ class _ScriptParser(argparse.ArgumentParser):
                               "folder" if folder else "report"))
         return action
 
+    def add_number(self, *names, allowed, **keywords):
+        """add_argument for a number of range `allowed` (ranges.Range; each one, for a
+        list): parse_args refuses one outside it as the package's commands do (bad input,
+        EXIT_ERROR, ranges.option_problem), before any work."""
+        action = self.add_argument(*names, **keywords)
+        self._ranges.append((action.dest, action.option_strings[-1] if action.option_strings
+                             else action.dest, allowed))
+        return action
+
+    def add_workers(self, default: int = 2):
+        """--workers N, the processes a script simulates in: at least 1, as `tegrasp sweep
+        --workers` (sweep.runner.WORKER_COUNT)."""
+        from tegrasp_drake.rig.integer_text import integer_option
+        from tegrasp_drake.sweep.runner import WORKER_COUNT
+        return self.add_number("--workers", type=integer_option, default=default,
+                               metavar="N", allowed=WORKER_COUNT,
+                               help=f"processes to simulate in (default: {default})")
+
     def parse_args(self, args=None, namespace=None):
+        from tegrasp_drake.rig.ranges import option_problem
         parsed = super().parse_args(args, namespace)
+        for destination, option, allowed in self._ranges:
+            values = getattr(parsed, destination)
+            for value in values if isinstance(values, list) else [values]:
+                problem = None if value is None else option_problem(option, value, allowed)
+                if problem:
+                    raise SystemExit(f"{self._script}: error: {problem}")
         for destination, kind in self._outputs:
             path = getattr(parsed, destination)
             if path is None:

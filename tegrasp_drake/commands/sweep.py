@@ -134,12 +134,13 @@ def check_spec_options(args) -> None:
     """OptionError for --attempts or --base-seed outside the range of the spec field it sets
     (declared on SweepSpec): a number that parses but is refused is bad input (exit 1), as
     for --workers, not a spec refused; the study's size is checked with the spec."""
-    from tegrasp_drake.rig.ranges import field_range
+    from tegrasp_drake.rig.ranges import field_range, option_problem
     for option, name in (("--attempts", "attempts"), ("--base-seed", "base_seed")):
         value = getattr(args, name, None)
-        allowed = field_range(SweepSpec, name)
-        if value is not None and not allowed.contains(value):
-            raise OptionError(f"{option} {allowed.words(value)}, got {value}")
+        problem = None if value is None else option_problem(option, value,
+                                                            field_range(SweepSpec, name))
+        if problem:
+            raise OptionError(problem)
 
 
 def spec_from_arguments(args) -> SweepSpec:
@@ -377,9 +378,11 @@ def check_workers(args) -> None:
     cores this process may run on."""
     if args.workers is None:
         return
+    from tegrasp_drake.rig.ranges import option_problem
     from tegrasp_drake.sweep.runner import WORKER_COUNT, default_workers
-    if not WORKER_COUNT.contains(args.workers):
-        raise OptionError(f"--workers {WORKER_COUNT.words(args.workers)}, got {args.workers}")
+    problem = option_problem("--workers", args.workers, WORKER_COUNT)
+    if problem:
+        raise OptionError(problem)
     cores = default_workers()
     if args.workers > cores and not getattr(args, "oversubscribe", False):
         raise OptionError(f"--workers {args.workers}: this machine gives this process {cores} "

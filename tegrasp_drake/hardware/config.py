@@ -26,7 +26,8 @@ from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
-                                          read_yaml_file, require_fields, require_mapping)
+                                          loaded_with_overrides, read_yaml_file,
+                                          require_fields, require_mapping)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
@@ -292,9 +293,11 @@ def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                     "(arm, gripper, tactile, watchdog, ...)")
     data.pop("_tag", None)
     for assignment in overrides:
-        apply_override(data, assignment)
-    config = load_typed(data, HardwareStationConfig, str(filename))
-    return validate_hardware_config(config, str(filename))
+        apply_override(data, assignment, "--config-set", "tactile.port")
+    return loaded_with_overrides(
+        lambda source: validate_hardware_config(
+            load_typed(data, HardwareStationConfig, source), source),
+        str(filename), overrides, "--config-set")
 
 
 def hardware_config_to_yaml(config: HardwareStationConfig) -> str:

@@ -143,19 +143,9 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
     if len(config.size) != len(sizes) or not all(_is_positive(v) for v in config.size):
         return "size", (f"must hold {len(sizes)} positive sizes [{', '.join(sizes)}] in "
                         f"metres for a {config.shape}, got {list(config.size)}")
-    if config.width_along_stroke() > MAX_WIDTH_M:
-        return "size", (
-            f"makes the object {config.width_along_stroke() * 1000:.1f} mm wide along the "
-            f"finger stroke, more than the {MAX_WIDTH_M * 1000:.1f} mm the 85 mm stroke "
-            f"leaves with {FINGER_CLEARANCE_M * 1000:.1f} mm clearance per finger")
-    width = config.width_along_stroke()
-    depth, deepest = config.depth_along_approach(), max_depth_m(width)
-    if depth > deepest:
-        return "size", (
-            f"makes the object {depth * 1000:.1f} mm deep along the approach, more than the "
-            f"{deepest * 1000:.1f} mm the 2F-85 takes at a {width * 1000:.1f} mm width: grasped "
-            f"at its centre, its near half must end {FINGER_CLEARANCE_M * 1000:.1f} mm short "
-            "of the palm")
+    problem = object_fit_problem(config)
+    if problem:
+        return "size", problem
     for name, words in (("mass", "the object's mass [kg]"),
                         ("friction", "its Coulomb friction coefficient, e.g. 0.5 (a "
                                      "frictionless object cannot be held from the side)")):
@@ -165,6 +155,47 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
         if not _is_positive(value):
             return name, f"must be positive ({words}), got {value!r}"
     return None
+
+
+def object_fit_problem(config: ObjectConfig, *, xy_bound_m: float = 0.0,
+                       yaw_bound_deg: float = 0.0) -> str | None:
+    """Why an object of valid sizes does not fit the open 2F-85 when it stands on its marker
+    (grasped at its centre), or up to xy_bound_m [m] off it along each axis and yawed up to
+    yaw_bound_deg [deg] (a sweep's placement jitter): its width along the stroke within
+    MAX_WIDTH_M, its near half FINGER_CLEARANCE_M short of the palm (max_depth_m); in words
+    that follow "field 'size'". None if it fits."""
+    width, depth = jittered_extents(config, yaw_bound_deg)
+    nominal_width = config.width_along_stroke()
+    jittered = xy_bound_m > 0 or yaw_bound_deg > 0
+    at = (f" at its placement jitter's far end ({xy_bound_m * 1000:g} mm off its marker "
+          f"each way, yawed {yaw_bound_deg:g} deg)" if jittered else "")
+    if width + 2 * xy_bound_m > MAX_WIDTH_M:
+        return (f"makes the object {(width + 2 * xy_bound_m) * 1000:.1f} mm wide along the finger stroke"
+                + f"{at}, more than the {MAX_WIDTH_M * 1000:.1f} mm the 85 mm stroke "
+                f"leaves with {FINGER_CLEARANCE_M * 1000:.1f} mm clearance per finger")
+    deepest = min(max_depth_m(nominal_width), max_depth_m(width))
+    if depth + 2 * xy_bound_m > deepest:
+        return (f"makes the object {(depth + 2 * xy_bound_m) * 1000:.1f} mm deep along the approach"
+                + f"{at}, more than the {deepest * 1000:.1f} mm the 2F-85 takes at a "
+                f"{nominal_width * 1000:.1f} mm width: grasped at its centre, its near half "
+                f"must end {FINGER_CLEARANCE_M * 1000:.1f} mm short of the palm")
+    return None
+
+
+def jittered_extents(config: ObjectConfig, yaw_bound_deg: float) -> tuple[float, float]:
+    """(width along the stroke, depth along the approach) [m] of the object's footprint at
+    its widest, and at its deepest, for a yaw up to yaw_bound_deg [deg] either way: a
+    cylinder's are its diameter; a rectangle w x d yawed by t spans w cos t + d sin t, which
+    grows until t = atan(d / w)."""
+    width, depth = config.width_along_stroke(), config.depth_along_approach()
+    if config.shape == "cylinder" or yaw_bound_deg <= 0:
+        return width, depth
+    bound = math.radians(min(yaw_bound_deg, 90.0))
+
+    def span(along: float, across: float) -> float:
+        t = min(bound, math.atan2(across, along))
+        return along * math.cos(t) + across * math.sin(t)
+    return span(width, depth), span(depth, width)
 
 
 DESCRIPTION_FIELDS = ("shape", "size", "mass", "friction", "file")

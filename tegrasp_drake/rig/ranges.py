@@ -32,6 +32,8 @@ class Range:
     length: int | None = None  # a list field: how many elements it holds
 
     def contains(self, value) -> bool:
+        if value != value:  # nan: in no range (an open end would let it through)
+            return False
         if self.low is not None and (value < self.low or (self.low_open and value == self.low)):
             return False
         return self.high is None or (value < self.high or (not self.high_open
@@ -86,6 +88,16 @@ SEED_RANGE = Range(low=0, high=2**32 - 1,
 # (Drake's simulator cannot advance to a time before its start); at most the scenario's time
 # limit (grasp_diagram.simulated_duration_range), to which `tegrasp trial` runs.
 SIMULATED_DURATION = Range(low=0.0, low_open=True, unit="s")
+
+
+def option_problem(option: str, value, allowed: Range) -> str | None:
+    """Why a command-line option's number `value` (one that parsed) is refused by its range
+    `allowed`, in words naming the option (`--workers must be at least 1, got 0`); None if it
+    lies in the range. A number that parses but lies outside its range is bad input (exit 1),
+    not a command line that does not parse (exit 2)."""
+    if allowed.contains(value):
+        return None
+    return f"{option} {allowed.words(value)}, got {value}"
 
 
 def _number(value) -> str:

@@ -32,10 +32,13 @@ from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_lin
 
 class ConfigError(ValueError):
     """A configuration file, field or value is wrong; the message names it, on one line (a
-    line break inside a value it quotes is shown as \\n)."""
+    line break inside a value it quotes is shown as \\n). `where`: the place in the text
+    ("line N, column M"), when parse_yaml found it, for a caller that words the error itself
+    (one that must not quote a file's content still says where)."""
 
-    def __init__(self, message: str = ""):
+    def __init__(self, message: str = "", *, where: str | None = None):
         super().__init__(error_line(str(message)))
+        self.where = where
 
 
 class YamlSyntaxError(ConfigError):
@@ -186,7 +189,8 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
     except yaml.YAMLError as e:
         problem = (_over_long_key(text, e, line_offset)
                    or _yaml_problem(e, line_offset, column_offset))
-        raise YamlSyntaxError(f"{source}: not valid YAML: {problem}") from None
+        raise YamlSyntaxError(f"{source}: not valid YAML: {problem}",
+                              where=_error_place(e, line_offset, column_offset)) from None
     except RecursionError:
         raise ConfigError(f"{source}: the YAML nests deeper than Python's recursion limit "
                           f"({sys.getrecursionlimit()} levels); no configuration nests more "
@@ -211,14 +215,14 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
         if node.tag.startswith("tag:yaml.org,2002:python/"):
             raise ConfigError(f"{source}: {where(node)}: a Python object tag "
                               f"(!!{node.tag.split(':', 2)[2]}) is never loaded; give a "
-                              "plain value")
+                              "plain value", where=where(node))
         if node.tag == "tag:yaml.org,2002:int" and isinstance(node, yaml.ScalarNode):
             try:
                 read_integer(node.value)
             except IntegerTextError as e:
                 field = f"field '{path}' " if path else ""
                 raise ConfigError(f"{source}: {field}({where(node)}) {e}; write a number in "
-                                  "the field's range") from None
+                                  "the field's range", where=where(node)) from None
         total = 1
         if isinstance(node, yaml.MappingNode):
             seen = {}
@@ -228,7 +232,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                             if isinstance(key, yaml.ScalarNode) else
                             "a list" if isinstance(key, yaml.SequenceNode) else "a mapping")
                     raise ConfigError(f"{source}: {where(key)}: a key must be a name (text), "
-                                      f"got {what}"[:300])
+                                      f"got {what}"[:300], where=where(key))
                 if isinstance(key, yaml.ScalarNode):  # a merge key '<<' too
                     if key.value in seen:
                         merging = key.tag == "tag:yaml.org,2002:merge"
@@ -236,7 +240,7 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                             f"{source}: key '{key.value}' appears twice ({seen[key.value]} "
                             f"and {where(key)}); keep one"
                             + ("; to merge several mappings give one '<<' a list of them"
-                               if merging else ""))
+                               if merging else ""), where=where(key))
                     seen[key.value] = where(key)
                 name = str(key.value) if isinstance(key, yaml.ScalarNode) else "<<"
                 if not path and root_key is not None:
@@ -247,11 +251,12 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
         if total > MAX_YAML_NODES and len(sizes) > MAX_YAML_NODES:  # written, not aliased
             raise ConfigError(f"{source}: holds more than {MAX_YAML_NODES} values (keys, "
                               f"values and entries; {where(node)}); a configuration is "
-                              "smaller: split the file, or keep only the entries you use")
+                              "smaller: split the file, or keep only the entries you use",
+                              where=where(node))
         if total > MAX_YAML_NODES:
             raise ConfigError(f"{source}: the YAML's aliases expand to more than "
                               f"{MAX_YAML_NODES} values ({where(node)}); write the values "
-                              "out, or use fewer nested aliases")
+                              "out, or use fewer nested aliases", where=where(node))
         sizes[id(node)] = total
         return total
 
@@ -278,23 +283,65 @@ def _over_long_key(text: str, error: yaml.YAMLError, line_offset: int = 0) -> st
             f"most {MAX_YAML_KEY_CHARS} characters")
 
 
+def _error_place(error: yaml.YAMLError, line_offset: int = 0,
+                 column_offset: int = 0) -> str | None:
+    """Where a YAML error is, "line N, column M" in the text given; None if PyYAML did not
+    say."""
+    mark = getattr(error, "problem_mark", None)
+    if mark is None:
+        return None
+    column = mark.column + 1 - (column_offset if mark.line == line_offset else 0)
+    return f"line {mark.line + 1 - line_offset}, column {max(column, 1)}"
+
+
 def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: int = 0) -> str:
     """A YAML error in one line: what and where (line, column in the text given)."""
-    mark = getattr(error, "problem_mark", None)
+    place = _error_place(error, line_offset, column_offset)
     problem = getattr(error, "problem", None) or str(error).splitlines()[0]
-    where = ""
-    if mark is not None:
-        column = mark.column + 1 - (column_offset if mark.line == line_offset else 0)
-        where = f"line {mark.line + 1 - line_offset}, column {max(column, 1)}: "
+    where = f"{place}: " if place else ""
     context = getattr(error, "context", None)
     return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 
 
-def set_words(assignment: str) -> str:
-    """How an error names a --set assignment: `--set 'KEY=VALUE'`, the value cut to about
-    ECHO_CHARS."""
+def set_words(assignment: str, option: str = "--set") -> str:
+    """How an error names a --set assignment (or one of another `option`, such as
+    --config-set): `--set 'KEY=VALUE'`, the value cut to about ECHO_CHARS."""
     key, equals, text = assignment.partition("=")
-    return f"--set '{shorten(key)}{equals}{shorten(text)}'"
+    return f"{option} '{shorten(key)}{equals}{shorten(text)}'"
+
+
+def _echo(assignment: str) -> str:
+    """An assignment as an error's source names it (`KEY=VALUE`), its parts cut (shorten)."""
+    key, equals, value = assignment.partition("=")
+    return shorten(key) + equals + shorten(value)
+
+
+# A source longer than this names only the assignments at fault (loaded_with_overrides).
+MAX_SOURCE_CHARACTERS = 200
+
+
+def loaded_with_overrides(load, file_source: str, overrides: typing.Sequence[str],
+                          option: str = "--set"):
+    """load(source) for a configuration read from a file and changed by the command line's
+    `option` assignments (--set, --config-set): a ConfigError it raises names them as its
+    source (`FILE --set 'KEY=VALUE'`), so that a bad value given on the command line is not
+    blamed on the file. When the whole list is long (over MAX_SOURCE_CHARACTERS: a preset's
+    or a sweep's many assignments would bury the one at fault) only the assignments whose
+    setting the message names are kept, with how many others there were; a short list stays
+    whole: a rule across settings may be broken by one it does not name."""
+    source = file_source + "".join(f" {option} {_echo(a)}" for a in overrides)
+    try:
+        return load(source)
+    except ConfigError as error:
+        message = str(error)
+        if not message.startswith(source) or len(source) <= MAX_SOURCE_CHARACTERS:
+            raise
+        rest = message[len(source):]
+        named = [a for a in overrides if f"'{assignment_key(a)}" in rest]
+        others = len(overrides) - len(named)
+        raise ConfigError(file_source + "".join(f" {option} {_echo(a)}" for a in named)
+                          + (f" (and {others} other {option})" if others else "")
+                          + rest) from None
 
 
 def assignment_problem(assignment: str, example: str = "object.mass") -> str | None:
@@ -335,32 +382,36 @@ def keys_overlap(a: str, b: str) -> bool:
     return a == b or a.startswith(b + ".") or b.startswith(a + ".")
 
 
-def apply_override(data: dict, assignment: str) -> None:
-    """Sets `key.sub=value` (YAML value) in nested YAML data."""
+def apply_override(data: dict, assignment: str, option: str = "--set",
+                   example: str = "object.name") -> None:
+    """Sets `key.sub=value` (YAML value) in nested YAML data; errors name the assignment as
+    given with `option` (--set, --config-set); a value that is not YAML is told to quote
+    text, shown on `example`, a text field of its config."""
+    words = set_words(assignment, option)
     problem = assignment_problem(assignment)
     if problem:
-        raise ConfigError(f"{set_words(assignment)}: {problem}")
+        raise ConfigError(f"{words}: {problem}")
     key, text = assignment.split("=", 1)
     if not isinstance(data, dict):
-        raise ConfigError(f"{set_words(assignment)}: the document it would change is "
+        raise ConfigError(f"{words}: the document it would change is "
                           f"{_describe(data)}, not a mapping of fields; fix the file")
     if "\n" in text:
-        raise ConfigError(f"{set_words(assignment)}: the value must be on one line")
+        raise ConfigError(f"{words}: the value must be on one line")
     prefix = "value: "
     try:
-        value = (parse_yaml(prefix + text, set_words(assignment), column_offset=len(prefix),
+        value = (parse_yaml(prefix + text, words, column_offset=len(prefix),
                             root_key=key.strip())["value"] if text.strip() else "")
     except ConfigError as e:
         if "not valid YAML" not in str(e):
             raise
         raise ConfigError(f"{e}; the value is YAML: quote text that holds ': ', '#', '*', "
-                          "'&', '!' or brackets, e.g. object.name='a: b'") from None
+                          f"'&', '!' or brackets, e.g. {example}='a: b'") from None
     node = data
     parts = key.strip().split(".")
     for part in parts[:-1]:
         node = node.setdefault(part, {})
         if not isinstance(node, dict):
-            raise ConfigError(f"{set_words(assignment)}: '{shorten(part)}' is not a mapping")
+            raise ConfigError(f"{words}: '{shorten(part)}' is not a mapping")
     node[parts[-1]] = value
 
 

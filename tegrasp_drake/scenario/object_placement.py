@@ -30,17 +30,27 @@ class ObjectPlacementConfig:
         """Where the object's centre stands [m, world]: the marker moved by the offset."""
         return tuple(a + b for a, b in zip(self.expected_xy, self.offset))
 
-    def problem(self, shape: str, size) -> tuple[str, str, object] | None:
-        """(field, must, value) when a `shape` of `size` [m] here is off the table; else None."""
+    def problem(self, shape: str, size, spread_m: float = 0.0
+                ) -> tuple[str, str, object] | None:
+        """(field, must, value) when a `shape` of `size` [m] here, or up to spread_m [m] off
+        it along each axis (a sweep's placement jitter), is off the table; else None."""
         x, y = self.xy()
-        radius = size[0] / 2 if shape == "cylinder" else math.hypot(size[0], size[1]) / 2
+        radius = footprint_radius(shape, size) + spread_m
         (cx, cy), (half_x, half_y) = TABLE_CENTER_XY, (TABLE_SIZE[0] / 2, TABLE_SIZE[1] / 2)
         if abs(x - cx) + radius <= half_x and abs(y - cy) + radius <= half_y:
             return None
         return ("offset", f"puts the object at ({x:.3f}, {y:.3f}) m (placement.expected_xy "
-                f"{list(self.expected_xy)} + placement.offset), off the table top (x "
+                f"{list(self.expected_xy)} + placement.offset"
+                + (f", +-{spread_m * 1000:g} mm of placement jitter" if spread_m else "")
+                + "), off the table top (x "
                 f"{cx - half_x:g} to {cx + half_x:g} m, y {cy - half_y:g} to {cy + half_y:g} m); "
                 "place it on the table", list(self.offset))
+
+
+def footprint_radius(shape: str, size) -> float:
+    """The radius [m] of the upright cylinder about an object's footprint at any yaw: a
+    cylinder's own, a box's (or a file's bounding box's) half diagonal."""
+    return size[0] / 2 if shape == "cylinder" else math.hypot(size[0], size[1]) / 2
 
 
 def object_speed_bound_mps(hit_impulse_n_s: float) -> float:

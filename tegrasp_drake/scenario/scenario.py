@@ -24,14 +24,14 @@ from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges,
-                                      check_times_resolved, declare_ranges, shorten)
+                                      check_times_resolved, declare_ranges)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
-                                          load_typed, parse_yaml, read_yaml_file_cached, require,
-                                          require_mapping)
+                                          load_typed, loaded_with_overrides, parse_yaml,
+                                          read_yaml_file_cached, require, require_mapping)
 from tegrasp_drake.simulation.capacitive_taxels import ad7147_frame_rate_hz, frame_rate_matches
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
@@ -48,7 +48,7 @@ from tegrasp_drake.rig.api_boundary import (PathLike, public_api, public_datacla
 from tegrasp_drake.scenario.moved_keys import (MOVED_KEYS, migrate_stored_scenario,
                                                 refuse_moved_keys)
 from tegrasp_drake.rig.object_file import check_model_file
-from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
+from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig, footprint_radius
 
 DEFAULT_SCENARIO = "default"
 __all__ = ["DEFAULT_SCENARIO", "FINGER_CLEARANCE_M", "Scenario", "LoadScenario",
@@ -367,10 +367,11 @@ def _open_hand_parts() -> tuple[tuple[float, float, float, float, float], ...]:
             (palm, tip, -outer, -HALF_STROKE, finger_half_z))
 
 
-def _check_start_clearance(scenario: Scenario, source: str) -> None:
+def check_start_clearance(scenario: Scenario, source: str, spread_m: float = 0.0) -> None:
     """The open hand at its start pose (arm.initial_gripper_xyz, up to
     arm.start_position_bound_m off it each way) clear of the table and of the object where it
-    stands (placement.expected_xy + placement.offset). A start on or in the table top (world
+    stands (placement.expected_xy + placement.offset, and up to spread_m [m] off it along
+    each axis: a sweep's placement jitter). A start on or in the table top (world
     z = 0) is a pose the simulated table does not let the hand take; a start with the body or
     a finger inside the object is one no real trial begins from (the contact solver would
     push them apart at the first step). The object is taken as the upright cylinder about
@@ -387,17 +388,20 @@ def _check_start_clearance(scenario: Scenario, source: str) -> None:
                 "[0.69, 0.0, 0.145] m", list(scenario.arm.initial_gripper_xyz))
     obj = scenario.object
     size = obj.size
-    radius = size[0] / 2 if obj.shape == "cylinder" else math.hypot(size[0], size[1]) / 2
+    radius = footprint_radius(obj.shape, size)
     cx, cy = scenario.placement.xy()
+    reach = margin + spread_m  # the hand's start bound and the object's jitter, each way
     for back, front, right, left, half_z in parts:
-        near_x = min(max(cx, x + back - margin), x + front + margin)
-        near_y = min(max(cy, y + right - margin), y + left + margin)
+        near_x = min(max(cx, x + back - reach), x + front + reach)
+        near_y = min(max(cy, y + right - reach), y + left + reach)
         overlaps_xy = math.hypot(cx - near_x, cy - near_y) < radius
         if overlaps_xy and z - half_z - margin < obj.height():
             require(False, source, "arm.initial_gripper_xyz",
                     f"starts the open hand's body or a finger inside the object "
                     f"'{obj.name}' at ({cx:.3f}, {cy:.3f}) m (placement.expected_xy + "
-                    "placement.offset): start the hand behind or above it, or move it",
+                    "placement.offset"
+                    + (f", +-{spread_m * 1000:g} mm of placement jitter" if spread_m else "")
+                    + "): start the hand behind or above it, or move it",
                     list(scenario.arm.initial_gripper_xyz))
 
 
@@ -479,7 +483,7 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
     if problem:
         field, words, value = problem
         require(False, source, f"arm.{field}", words, value)
-    _check_start_clearance(scenario, source)
+    check_start_clearance(scenario, source)
     require(not scenario.contact_geometry.pad_refinement or scenario.gripper.model == "linkage",
             source, "contact_geometry.pad_refinement", "must be 0 with gripper.model prismatic "
             "(the refined pad meshes are the linkage hand's: set gripper.model=linkage, or "
@@ -526,34 +530,10 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                           f"{type(data).__name__} {data!r}")
     for assignment in overrides:
         apply_override(data, assignment)
-    # A bad value given with --set is named as such, not as the file's (_culprits_named).
-    source = f"{path} [{name}]" + "".join(f" --set {_echo(a)}" for a in overrides)
-    try:
-        return _checked_scenario(data, source, controller=controller, allow_long=allow_long,
-                                 on_ignored=on_ignored)
-    except ConfigError as error:
-        raise ConfigError(_culprits_named(str(error), source, f"{path} [{name}]",
-                                          overrides)) from None
-
-
-# A source longer than this names only the --set assignments at fault (_culprits_named).
-MAX_SOURCE_CHARACTERS = 200
-
-
-def _culprits_named(message: str, source: str, file_source: str,
-                    overrides: typing.Sequence[str]) -> str:
-    """`message` (which begins with `source`: the file, its entry and every --set), its
-    source cut to the --set assignments whose setting the message names, and how many others
-    there were, when the whole list is long (over MAX_SOURCE_CHARACTERS): a preset's or a
-    sweep's many assignments would bury the one at fault. A short list stays whole: a rule
-    across settings may be broken by one it does not name."""
-    if not message.startswith(source) or len(source) <= MAX_SOURCE_CHARACTERS:
-        return message
-    rest = message[len(source):]
-    named = [a for a in overrides if f"'{a.partition('=')[0].strip()}" in rest]
-    others = len(overrides) - len(named)
-    return (file_source + "".join(f" --set {_echo(a)}" for a in named)
-            + (f" (and {others} other --set)" if others else "") + rest)
+    return loaded_with_overrides(
+        lambda source: _checked_scenario(data, source, controller=controller,
+                                         allow_long=allow_long, on_ignored=on_ignored),
+        f"{path} [{name}]", overrides)
 
 
 def _checked_scenario(data: dict, source: str, *, controller, allow_long, on_ignored):
@@ -618,12 +598,6 @@ def rechecked(scenario: Scenario, source: str) -> Scenario:
     returned with its object resolved (a bare Scenario() is the built-in box). A long grasp
     script is accepted: that limit is LoadScenario's allow_long."""
     return validate(scenario, source, allow_long=True, loaded=True)
-
-
-def _echo(assignment: str) -> str:
-    """A --set assignment as an error's source names it, its value cut (ranges.shorten)."""
-    key, equals, value = assignment.partition("=")
-    return shorten(key) + equals + shorten(value)
 
 
 @public_api

@@ -295,6 +295,40 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
     _check_scenario_overrides(spec.scenario_overrides, spec.controllers, fail)
+    _check_jittered_placements(spec, source, fail)
+
+
+def _check_jittered_placements(spec: SweepSpec, source: str, fail) -> None:
+    """Each object at each marker, moved and yawed by the placement jitter's far end
+    (randomisation.placement_xy_bound_m along each axis, placement_yaw_bound_deg): the load-time
+    checks of a scenario's object and placement (the object fits the open hand, stands on the
+    table, clear of the hand's start pose) hold at every jitter a trial may draw, not only at
+    the marker itself, so that no trial is refused after the sweep has started."""
+    from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
+    from tegrasp_drake.scenario.scenario import LoadScenario, check_start_clearance
+    xy_bound = spec.randomisation.placement_xy_bound_m
+    yaw_bound = spec.randomisation.placement_yaw_bound_deg
+    # the arm's start and the marker, which no controller changes
+    base = LoadScenario(overrides=spec.scenario_overrides, controller=spec.controllers[0])
+    for name in spec.objects:
+        config = spec.user_objects.get(name) or objects.BUILTIN_OBJECTS.get(name)
+        if config is None:  # a built-in of the caller's own list: resolved by the scenario
+            continue
+        problem = objects.object_fit_problem(config, xy_bound_m=xy_bound,
+                                             yaw_bound_deg=yaw_bound)
+        if problem:
+            fail("randomisation", f"object '{name}': {problem}; give smaller "
+                                  "placement_xy_bound_m or placement_yaw_bound_deg, or a "
+                                  "smaller object")
+        for offset in spec.grid:
+            placement = ObjectPlacementConfig(expected_xy=list(base.placement.expected_xy),
+                                              offset=[float(v) for v in offset])
+            where = f"{source}: object '{name}' at marker {list(offset)} with its placement jitter"
+            off_table = placement.problem(config.shape, config.size, xy_bound)
+            if off_table:
+                raise ConfigError(f"{where}: field 'placement.{off_table[0]}' {off_table[1]}")
+            check_start_clearance(dataclasses.replace(base, object=config,
+                                                      placement=placement), where, xy_bound)
 
 
 def _check_scenario_overrides(assignments, controllers, fail):

@@ -299,7 +299,7 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
     trials: a progress bar over the recordings when `progress`, each one logged at INFO.
     SweepError for a folder of other world settings."""
     from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.events.event_file import INDEX_FILE, read_index
+    from tegrasp_drake.events.event_file import has_index, read_index
     from tegrasp_drake.recording.campaign import RecordEventsError
     from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, TEMPLATE_RUNS,
                                                          record_object_ensemble)
@@ -341,7 +341,7 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
     for sub in recorded_events_folders(spec):
         destination = folder / sub
         have = ({entry["object"] for entry in read_index(destination)}
-                if (destination / INDEX_FILE).is_file() else set())
+                if has_index(destination) else set())
         pending += [(sub, name) for name in spec.sweep.objects if name not in have]
     with progress_bar(len(pending)) as bar:
         for sub, object_name in pending:
@@ -396,7 +396,7 @@ def check_kept_events(spec: TransferSpec, out_dir) -> None:
     remedy (remove the world's folder: its events are recorded again)."""
     from tegrasp_drake.control.controller_registry import controller_class
     from tegrasp_drake.events import MemorizedEventError
-    from tegrasp_drake.events.event_file import INDEX_FILE, read_index
+    from tegrasp_drake.events.event_file import has_index, read_index
     from tegrasp_drake.rig.files import UserPathError
     from tegrasp_drake.sweep.spec import expand_trials
     from tegrasp_drake.sweep.trial_function import trial_events
@@ -410,7 +410,7 @@ def check_kept_events(spec: TransferSpec, out_dir) -> None:
             if sub not in made or key in checked:
                 continue
             checked.add(key)
-            if not (folder / sub / INDEX_FILE).is_file() or trial.object_name not in {
+            if not has_index(folder / sub) or trial.object_name not in {
                     entry["object"] for entry in read_index(folder / sub)}:
                 continue  # recorded by this run
             try:

@@ -6,7 +6,8 @@ its width."""
 import pytest
 
 import tegrasp_drake as T
-from tegrasp_drake.rig.objects import max_depth_m
+from tegrasp_drake.rig.objects import MAX_WIDTH_M, ObjectConfig, max_depth_m
+from tegrasp_drake.rig.typed_yaml import ConfigError
 from tests.bad_input.probes import refusal
 
 
@@ -106,6 +107,64 @@ def test_the_deepest_object_the_hand_takes_loads():
         "object.name=crate", "object.shape=box", f"object.size=[{deepest}, 0.08, 0.1]",
         "object.mass=0.1", "object.friction=0.5"])
     assert scenario.object.size[0] == deepest
+
+
+# Rule: a sweep's trials place each object up to randomisation.placement_xy_bound_m off its
+# marker along each axis and yaw it up to placement_yaw_bound_deg: the spec is refused when
+# the object's fit in the open hand, or its start clearance, fails at the jitter's far end,
+# though the object passes on its marker.
+def _sweep_with(obj_size, grid=((0.0, 0.0),), xy_bound_m=0.002, yaw_bound_deg=0.0):
+    from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec
+    return SweepSpec(objects=("crate",), controllers=("open_loop",), attempts=1,
+                     grid=grid, user_objects={"crate": ObjectConfig(
+                         name="crate", shape="box", size=list(obj_size), mass=0.1,
+                         friction=0.5)},
+                     randomisation=RandomisationConfig(placement_xy_bound_m=xy_bound_m,
+                                                       placement_yaw_bound_deg=yaw_bound_deg))
+
+
+@pytest.mark.parametrize("xy_bound_m, yaw_bound_deg", [(0.002, 0.0), (0.0, 3.0)])
+def test_a_sweep_object_as_deep_as_the_hand_takes_is_refused_once_jittered(xy_bound_m,
+                                                                          yaw_bound_deg):
+    from tegrasp_drake.sweep.spec import validate_spec
+    deepest = max_depth_m(0.06)
+    validate_spec(_sweep_with([deepest, 0.06, 0.1], xy_bound_m=0.0))  # on its marker: fits
+    refusal(lambda: validate_spec(_sweep_with([deepest, 0.06, 0.1], xy_bound_m=xy_bound_m,
+                                              yaw_bound_deg=yaw_bound_deg)),
+            "field 'randomisation'", "object 'crate'", "deep along the approach",
+            "placement jitter's far end", "short of the palm")
+
+
+def test_a_sweep_object_as_wide_as_the_stroke_takes_is_refused_once_jittered():
+    from tegrasp_drake.sweep.spec import validate_spec
+    validate_spec(_sweep_with([0.03, MAX_WIDTH_M, 0.1], xy_bound_m=0.0))
+    refusal(lambda: validate_spec(_sweep_with([0.03, MAX_WIDTH_M, 0.1])),
+            "field 'randomisation'", "wide along the finger stroke",
+            "placement jitter's far end (2 mm off its marker")
+
+
+def test_a_sweep_marker_just_clear_of_the_start_pose_is_refused_once_jittered():
+    """The object's marker moved toward the hand's start until the un-jittered check just
+    passes: the jitter's 2 mm toward the hand puts the hand inside it."""
+    from tegrasp_drake.sweep.spec import validate_spec
+    size = T.LoadScenario(name="box").object.size  # the crate is the built-in box's size
+
+    def clear(dx):
+        try:
+            T.LoadScenario(name="box", overrides=[f"placement.offset=[{dx},0.0]"])
+            return True
+        except ConfigError:
+            return False
+    inside, outside = -0.2, 0.0  # the object under the hand's body, and on its marker
+    assert not clear(inside) and clear(outside)
+    while outside - inside > 1e-5:
+        middle = (inside + outside) / 2
+        inside, outside = (inside, middle) if clear(middle) else (middle, outside)
+    marker = ((round(outside + 0.0005, 4), 0.0),)  # half a millimetre clear of the hand
+    validate_spec(_sweep_with(size, grid=marker, xy_bound_m=0.0))
+    refusal(lambda: validate_spec(_sweep_with(size, grid=marker)),
+            "object 'crate' at marker", "placement jitter", "'arm.initial_gripper_xyz'",
+            "inside the object 'crate'", "+-2 mm of placement jitter")
 
 
 # Rule: a pose of the grasp the arm cannot take is refused at load, naming the fields that

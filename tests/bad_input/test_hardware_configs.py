@@ -268,6 +268,31 @@ def test_a_nul_in_a_config_set_port_is_bad_input(tmp_path, capfd):
     assert code == 1
 
 
+@pytest.mark.parametrize("assignment, words", [
+    ("ready_timeout=-5", "field 'ready_timeout' must be positive"),
+    ("watchdog.arm_timeout=0", "field 'watchdog.arm_timeout' must be positive"),
+    ("tactile.max_backlog=many", "field 'tactile.max_backlog'"),
+])
+def test_a_config_set_value_wrong_for_its_field_is_named_as_the_option(tmp_path, capfd,
+                                                                       assignment, words):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set", assignment,
+                          "--log", str(tmp_path / "run.lcmlog")], capfd)
+    assert_one_line_error(code, text, f"{config} --config-set {assignment}: {words}")
+    assert code == 1
+
+
+def test_a_config_set_value_that_is_not_yaml_is_named_as_the_option(tmp_path, capfd):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set",
+                          "tactile.port=[unclosed", "--log", str(tmp_path / "run.lcmlog")],
+                         capfd)
+    assert_one_line_error(code, text, "--config-set 'tactile.port=[unclosed': not valid YAML",
+                          "e.g. tactile.port='a: b'")
+
+
 def test_a_nul_in_a_port_set_from_python_is_refused_by_the_builder():
     from tegrasp_drake.hardware.station import MakeHardwareStation
     config = HardwareStationConfig()
@@ -300,3 +325,15 @@ def test_a_file_that_is_no_calibration_is_refused_without_its_content(tmp_path, 
                           "--log", str(tmp_path / "run.lcmlog")], capfd)
     assert_one_line_error(code, text, "field 'tactile.calibration_file'", words)
     assert code == 1 and "secret" not in text.replace(str(tmp_path), "")
+
+
+@pytest.mark.parametrize("content, where", [
+    ("left:\n  gain: [1.0e-3]\n  offset: [unclosed\n", "line 4, column 1"),
+    ("left: {}\nright: {}\nleft: {}\n", "line 3, column 1"),
+])
+def test_a_calibration_that_is_not_yaml_is_refused_saying_where_without_its_content(
+        tmp_path, content, where):
+    (tmp_path / "private").write_text(content.replace("left", "secret_left"))
+    message = refusal(lambda: LoadTactileCalibration(tmp_path / "private"),
+                      f"{tmp_path / 'private'}: {where}: is not a tactile calibration")
+    assert "secret" not in message.replace(str(tmp_path), ""), message

@@ -18,7 +18,8 @@ from tegrasp_drake.events.ra_noise_floor import (FALSE_ALARM_PER_TRIAL, TRIAL_HO
                                                   floor_sigmas)
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.transfer.matrix import (LoadTransferSpec, TransferWorld,
-                                           record_world_events, world_assignments,
+                                           check_kept_events, record_world_events,
+                                           world_assignments, world_events_folder,
                                            world_scenario)
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -192,6 +193,46 @@ def test_events_recorded_at_another_events_seed_are_refused(tmp_path):
         assert record_world_events(first, "ideal", folder) == 0  # the same seed: resumed
         with pytest.raises(SweepError, match="recorded with other settings"):
             record_world_events(then, "ideal", folder)
+
+
+def _unreadable_index(folder, kind):
+    """`folder`/index.json made a `kind` ("fifo", "folder", "loop") no reader can read."""
+    folder.mkdir(parents=True)
+    index = folder / "index.json"
+    if kind == "fifo":
+        os.mkfifo(index)  # no writer: an open() for reading would block for ever
+    elif kind == "folder":
+        index.mkdir()
+    else:
+        index.symlink_to(index)
+
+
+@pytest.mark.parametrize("kind", ["fifo", "folder", "loop"])
+def test_a_world_events_index_that_cannot_be_read_is_refused_not_recorded_over(
+        tmp_path, monkeypatch, kind):
+    """Something in the place of a world's events index is not taken for no index (which
+    would record the events again beside it): it is refused by name."""
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.recording import paper_events
+
+    def refuse_to_record(*arguments):
+        raise AssertionError("recorded over an index it could not read")
+    monkeypatch.setattr(paper_events, "record_events", refuse_to_record)
+    spec = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS))
+    _unreadable_index(tmp_path / "ideal", kind)
+    with pytest.raises(MemorizedEventError, match="index.json"):
+        record_world_events(spec, "ideal", tmp_path / "ideal")
+
+
+@pytest.mark.parametrize("kind", ["fifo", "folder", "loop"])
+def test_a_kept_world_index_that_cannot_be_read_is_refused_before_anything_runs(tmp_path,
+                                                                               kind):
+    from tegrasp_drake.events import MemorizedEventError
+    spec = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS))
+    out = tmp_path / "out"
+    _unreadable_index(world_events_folder(out, "ideal"), kind)
+    with pytest.raises(MemorizedEventError, match="index.json"):
+        check_kept_events(spec, out)
 
 
 def test_the_committed_transfer_events_resume_at_the_default_events_seed(tmp_path):

@@ -69,8 +69,9 @@ def LoadTactileCalibration(filename: str) -> TactileCalibration:
     text = read_yaml_text(filename, "the tactile calibration")
     try:
         data = parse_yaml(text, str(filename)) if text else None
-    except ConfigError:  # its words may quote the text (a key, a token)
-        raise ConfigError(f"{filename}: is not a tactile calibration (its {len(text)} "
+    except ConfigError as e:  # its words may quote the text (a key, a token); where may not
+        where = f" {e.where}:" if e.where else ""
+        raise ConfigError(f"{filename}:{where} is not a tactile calibration (its {len(text)} "
                           f"characters are refused as YAML): {advice}") from None
     if data is None:
         raise ConfigError(f"{filename}: the tactile calibration is empty; give the pads' "
