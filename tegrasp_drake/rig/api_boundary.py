@@ -19,7 +19,7 @@ import threading
 import types
 import typing
 
-from tegrasp_drake.rig.ranges import check_ranges, python_scalar
+from tegrasp_drake.rig.ranges import check_ranges, number_problem, python_scalar
 
 # A file or folder argument: text or a path object (pathlib.Path, os.DirEntry).
 PathLike = str | os.PathLike
@@ -218,8 +218,9 @@ def _check_constraint(function: str, name: str, value, constraint) -> None:
             at = where if items is not value else f"{where}[{k}]"
             if not isinstance(item, (int, float)) or isinstance(item, bool):
                 continue  # the type check said what the items may be
-            if not math.isfinite(item):
-                raise ValueError(f"{at} must be a finite number, got {item!r}")
+            problem = number_problem(item)
+            if problem is not None:
+                raise ValueError(f"{at} {problem}")
             if not constraint.contains(item):
                 raise ValueError(f"{at} {constraint.words(item)}, got {item!r}")
 
@@ -296,7 +297,8 @@ def _describe_hint(hint) -> str:
 
 
 def _short_repr(value) -> str:
-    text = repr(value)
+    from tegrasp_drake.rig.ranges import shown
+    text = shown(value, limit=10**9)
     return text if len(text) <= 60 else text[:57] + "..."
 
 

@@ -7,9 +7,11 @@ first value outside its range or choice."""
 import collections.abc
 import dataclasses
 import math
+import sys
 import types
 import typing
 
+from tegrasp_drake.rig.integer_text import integer_beyond_problem, integer_digits
 from tegrasp_drake.rig.number_text import number_text
 
 _KEY = "tegrasp_range"
@@ -182,6 +184,22 @@ def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
+def number_problem(value) -> str | None:
+    """Why `value` cannot be a setting's number, in words that follow "field 'x'": not a
+    number, not finite (NaN, an infinity), or an integer beyond a float's range (the words
+    the YAML and --set readers give its text); None for a finite number. Every range check
+    asks this first, so that such a value is never judged, or refused, by its size."""
+    value = python_scalar(value)
+    if not _is_number(value):
+        return f"must be a finite number, got {type(value).__name__} {shown(value)}"
+    beyond = integer_beyond_problem(value)
+    if beyond is not None:
+        return beyond
+    if not math.isfinite(value):
+        return f"must be a finite number, got {type(value).__name__} {shown(value)}"
+    return None
+
+
 def is_integer(value) -> bool:
     """Whether `value` is a whole number as Python holds one (an int, not a bool: Python's True
     is the int 1, JSON's `true` is no number), for every field that must be an integer."""
@@ -250,7 +268,7 @@ def _check_distinct(value, field: dataclasses.Field, source: str, path: str) -> 
             continue  # a type error, which load_typed names
         if name in seen:
             from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: on checking
-            raise ConfigError(f"{source}: field '{path}' names {shorten(repr(name))} twice "
+            raise ConfigError(f"{source}: field '{path}' names {shown(name)} twice "
                               f"(items {value.index(name)} and {k}); list each of its "
                               f"{field.metadata[_DISTINCT_KEY]} once")
         seen.add(name)
@@ -265,7 +283,7 @@ def _check_length(value, field: dataclasses.Field, source: str, path: str) -> No
                  else type(value).__name__)
         from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
         raise ConfigError(f"{source}: field '{path}' must hold {length} {items}, got {count}: "
-                          f"{shorten(repr(value))}")
+                          f"{shown(value)}")
 
 
 def _field_default(field: dataclasses.Field):
@@ -289,7 +307,7 @@ def _check_not_empty(value, field: dataclasses.Field, source: str, path: str) ->
         return
     from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
     raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it out for "
-                      f"its default, {shorten(repr(default))}")
+                      f"its default, {shown(default)}")
 
 
 def _check_value(value, declared: "Range | Choice", source: str, path: str) -> None:
@@ -297,7 +315,7 @@ def _check_value(value, declared: "Range | Choice", source: str, path: str) -> N
     if isinstance(declared, Choice):
         if value not in declared.names:
             raise ConfigError(f"{source}: field '{path}' {declared.words()}, got "
-                              f"{type(value).__name__} {shorten(repr(value))}")
+                              f"{type(value).__name__} {shown(value)}")
         return
     if declared.length is not None and (not isinstance(value, (list, tuple))
                                         or len(value) != declared.length):
@@ -305,14 +323,14 @@ def _check_value(value, declared: "Range | Choice", source: str, path: str) -> N
                  else type(value).__name__)
         raise ConfigError(f"{source}: field '{path}' must hold {declared.length} numbers"
                           f"{' [' + declared.unit + ']' if declared.unit else ''}, got "
-                          f"{count}: {shorten(repr(value))}")
+                          f"{count}: {shown(value)}")
     for item_path, item in _values(value, path):
         item = python_scalar(item)
         if item is None:
             continue
-        if not _is_number(item) or not math.isfinite(item):
-            raise ConfigError(f"{source}: field '{item_path}' must be a finite number, "
-                              f"got {type(item).__name__} {shorten(repr(item))}")
+        problem = number_problem(item)
+        if problem is not None:
+            raise ConfigError(f"{source}: field '{item_path}' {problem}")
         if not declared.contains(item):
             raise ConfigError(f"{source}: field '{item_path}' {declared.words(item)}, "
                               f"got {item!r}")
@@ -330,6 +348,14 @@ def shorten(text: str, limit: int = 80) -> str:
     if len(text) <= limit:
         return text
     return f"{text[:limit]}... ({len(text)} characters)"
+
+
+def shown(value, limit: int = 80) -> str:
+    """`value` as an error echoes it: its repr, shortened; an integer Python will not write
+    as text (over 4300 digits) by its length alone."""
+    if isinstance(value, int) and abs(value) > sys.float_info.max:
+        return f"<an integer of {integer_digits(value)} digits>"
+    return shorten(repr(value), limit)
 
 
 def _check_held(value, source: str, path: str) -> None:

@@ -25,7 +25,7 @@ import yaml
 from tegrasp_drake.rig.core_schema_yaml import (compose, construct, yaml11_only_boolean,
                                                 yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
-from tegrasp_drake.rig.ranges import python_scalar, shorten
+from tegrasp_drake.rig.ranges import number_problem, python_scalar, shorten, shown
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
@@ -552,6 +552,10 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
             _check_instance_value(item, arguments[1], f"{path}.{key}", source)
     elif hint in _SCALAR_WORDS:
         value = python_scalar(value)
+        if hint in (int, float) and _is_scalar(value, int):  # 10**400: no reader bounded it
+            problem = number_problem(value)
+            if problem is not None:
+                raise ConfigError(f"{source}: {_field(path)}{problem}")
         if not _is_scalar(value, hint) and not (hint is float and isinstance(value, float)):
             _check_value(value, hint, path, source)  # the YAML path's words for a scalar
         _check_text(value, path, source)
@@ -603,7 +607,7 @@ def _check_text(value, path: str, source: str) -> None:
     if isinstance(value, str):
         problem = text_problem(value)
         if problem:
-            raise ConfigError(f"{source}: field '{path}' {problem}, got {shorten(repr(value))}")
+            raise ConfigError(f"{source}: field '{path}' {problem}, got {shown(value)}")
 
 
 def _is_scalar(value, hint) -> bool:
@@ -612,7 +616,7 @@ def _is_scalar(value, hint) -> bool:
     if isinstance(value, bool):
         return False
     if hint is float:
-        return isinstance(value, (int, float)) and math.isfinite(value)
+        return isinstance(value, (int, float)) and number_problem(value) is None
     return isinstance(value, hint)
 
 
@@ -647,7 +651,7 @@ def _check_drake_scalars(data, schema, source: str, where: str) -> None:
 def require(condition: bool, source: str, path: str, words: str, value) -> None:
     """Raises ConfigError "SOURCE: field 'PATH' WORDS, got VALUE" unless `condition`."""
     if not condition:
-        raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
+        raise ConfigError(f"{source}: field '{path}' {words}, got {shown(value)}")
 
 
 def _refuse_tag(value, path: str, source: str) -> None:
@@ -740,4 +744,4 @@ def _field(path: str) -> str:
 
 
 def _describe(value) -> str:
-    return f"{type(value).__name__} {shorten(repr(value))}"
+    return f"{type(value).__name__} {shown(value)}"
