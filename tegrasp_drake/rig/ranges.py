@@ -174,10 +174,23 @@ def field_range(cls: type, name: str) -> Range:
 
 
 def python_scalar(value):
-    """A NumPy scalar as the Python one it holds (np.int64(3) -> 3); other values unchanged."""
+    """A NumPy scalar as the Python one it holds (np.int64(3) -> 3, np.float32(0.2) -> 0.2 to
+    float32's precision, np.longdouble as a float); other values unchanged."""
     if type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0:
-        return value.item()
+        item = value.item()
+        if type(item).__module__ == "numpy" and hasattr(item, "is_integer"):  # longdouble
+            return float(item)
+        return item
     return value
+
+
+def real_number(value) -> int | float | None:
+    """`value` as the Python number it is (a NumPy scalar of any real dtype as the int or
+    float it holds: python_scalar), None if it is no number (a bool, text, an array, a
+    complex number). Every check that asks whether a value is a number asks this, so that
+    np.float32(0.2) is judged as 0.2, never refused as if it were not positive."""
+    value = python_scalar(value)
+    return value if _is_number(value) else None
 
 
 def _is_number(value) -> bool:
@@ -219,23 +232,26 @@ def _values(value, path: str):
         yield path, value
 
 
-def check_ranges(config, source: str, where: str = "") -> None:
+def check_ranges(config, source: str, where: str = "", *, numbers_only: bool = False) -> None:
     """ConfigError naming the first field of `config` (a dataclass instance, and everything
     it holds) whose value is not a finite number inside its declared Range, or not one of
-    its declared Choice's names."""
+    its declared Choice's names. numbers_only: only whether each number of a field with a
+    Range is one (number_problem), for a check of relations that must not judge a NaN by
+    its size."""
     if type(config) in _FOREIGN:
-        _check_foreign(config, source, where)
+        _check_foreign(config, source, where, numbers_only)
         return
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
     for path, value, field in _declared_fields(config, where):
-        _check_not_empty(value, field, source, path)
-        _check_length(value, field, source, path)
-        _check_distinct(value, field, source, path)
+        if not numbers_only:
+            _check_not_empty(value, field, source, path)
+            _check_length(value, field, source, path)
+            _check_distinct(value, field, source, path)
         declared = range_of(field)
         if declared is not None and value is not None:
-            _check_value(value, declared, source, path)
-        _check_held(value, source, path)
+            _check_value(value, declared, source, path, numbers_only)
+        _check_held(value, source, path, numbers_only)
 
 
 def _declared_fields(config, where: str):
@@ -310,15 +326,16 @@ def _check_not_empty(value, field: dataclasses.Field, source: str, path: str) ->
                       f"its default, {shown(default)}")
 
 
-def _check_value(value, declared: "Range | Choice", source: str, path: str) -> None:
+def _check_value(value, declared: "Range | Choice", source: str, path: str,
+                 numbers_only: bool = False) -> None:
     from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
     if isinstance(declared, Choice):
-        if value not in declared.names:
+        if value not in declared.names and not numbers_only:
             raise ConfigError(f"{source}: field '{path}' {declared.words()}, got "
                               f"{type(value).__name__} {shown(value)}")
         return
-    if declared.length is not None and (not isinstance(value, (list, tuple))
-                                        or len(value) != declared.length):
+    if declared.length is not None and not numbers_only and (
+            not isinstance(value, (list, tuple)) or len(value) != declared.length):
         count = (f"{len(value)} elements" if isinstance(value, (list, tuple))
                  else type(value).__name__)
         raise ConfigError(f"{source}: field '{path}' must hold {declared.length} numbers"
@@ -331,16 +348,16 @@ def _check_value(value, declared: "Range | Choice", source: str, path: str) -> N
         problem = number_problem(item)
         if problem is not None:
             raise ConfigError(f"{source}: field '{item_path}' {problem}")
-        if not declared.contains(item):
+        if not declared.contains(item) and not numbers_only:
             raise ConfigError(f"{source}: field '{item_path}' {declared.words(item)}, "
                               f"got {item!r}")
 
 
-def _check_foreign(config, source: str, where: str) -> None:
+def _check_foreign(config, source: str, where: str, numbers_only: bool = False) -> None:
     """A Drake config object against the table declare_ranges holds for its class."""
     for name, declared in _FOREIGN[type(config)].items():
         _check_value(getattr(config, name), declared, source,
-                     f"{where}.{name}" if where else name)
+                     f"{where}.{name}" if where else name, numbers_only)
 
 
 def shorten(text: str, limit: int = 80) -> str:
@@ -358,17 +375,17 @@ def shown(value, limit: int = 80) -> str:
     return shorten(repr(value), limit)
 
 
-def _check_held(value, source: str, path: str) -> None:
+def _check_held(value, source: str, path: str, numbers_only: bool = False) -> None:
     if type(value) in _FOREIGN or (dataclasses.is_dataclass(value)
                                    and not isinstance(value, type)):
-        check_ranges(value, source, path)
+        check_ranges(value, source, path, numbers_only=numbers_only)
     elif isinstance(value, collections.abc.Mapping):
         for key, item in value.items():
-            _check_held(item, source, f"{path}.{key}")
+            _check_held(item, source, f"{path}.{key}", numbers_only)
     elif isinstance(value, (list, tuple)):
         for k, item in enumerate(value):
             if dataclasses.is_dataclass(item) or type(item) in _FOREIGN:
-                check_ranges(item, source, f"{path}[{k}]")
+                check_ranges(item, source, f"{path}[{k}]", numbers_only=numbers_only)
 
 
 def _numeric(hint) -> bool:

@@ -534,8 +534,8 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
         if dataclasses.is_dataclass(value):
             check_instance(value, source, path)
     elif origin in (list, tuple, collections.abc.Sequence):
-        if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
-            value = value.tolist()
+        if getattr(value, "ndim", 0) >= 1 and not isinstance(value, (list, tuple)):
+            raise ConfigTypeError(f"{source}: {_field(path)}{array_for_list_words(value, path)}")
         if not isinstance(value, (list, tuple)):
             _refuse_type(value, _type_words(hint), path, source)
         arguments = [a for a in typing.get_args(hint) if a is not Ellipsis]
@@ -561,6 +561,16 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
         _check_text(value, path, source)
     elif isinstance(hint, type) and origin is None and not isinstance(value, hint):
         _refuse_type(value, _type_words(hint), path, source)
+
+
+def array_for_list_words(array, path: str) -> str:
+    """Why a NumPy array cannot be a list field's value, and what to give, in words that
+    follow "field 'x'": its truth and equality are elementwise, so a check or a comparison
+    deep inside would fail with no field named (a public dataclass's constructor and every
+    public function's config argument refuse it in these words)."""
+    name = re.sub(r"\[\d+\]$", "", path).rsplit(".", 1)[-1]
+    return (f"must be a list or tuple, got {type(array).__module__}.{type(array).__name__}; "
+            f"give {name}={name}.tolist()")
 
 
 def _type_words(hint) -> str:
