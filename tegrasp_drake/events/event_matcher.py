@@ -12,7 +12,7 @@ from tegrasp_drake.rig.api_boundary import check_field_values, public_api, publi
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, Range,
-                                      bounded, declared_field)
+                                      bounded, declared_field, number_problem, real_number)
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
@@ -62,8 +62,7 @@ def check_matcher_config(config: EventMatcherConfig) -> None:
     score = Range(**SCORE_RANGE)
     for transition, pair in dict(config.event_thresholds).items():
         if (not isinstance(pair, (tuple, list)) or len(pair) != 2 or not all(
-                isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
-                and score.contains(x) for x in pair)):
+                number_problem(x) is None and score.contains(real_number(x)) for x in pair)):
             raise ConfigError(f"EventMatcher: config: field 'event_thresholds.{transition}' "
                               f"must be a pair (SA, RA) of numbers in [-1, 1] "
                               f"({SCORE_RANGE['why']}), got {pair!r}")

@@ -19,7 +19,7 @@ import threading
 import types
 import typing
 
-from tegrasp_drake.rig.ranges import check_ranges, python_scalar
+from tegrasp_drake.rig.ranges import check_ranges, number_problem, python_scalar
 
 # A file or folder argument: text or a path object (pathlib.Path, os.DirEntry).
 PathLike = str | os.PathLike
@@ -115,7 +115,7 @@ def public_api(function):
         except TypeError as e:
             raise TypeError(f"{name}: {e}") from None
         _check_bound(name, signature, hints, bound)
-        return function(*args, **kwargs)
+        return function(*bound.args, **bound.kwargs)  # NumPy scalars as Python's numbers
 
     def bind_now(**kwargs):
         """functools.partial(function, **kwargs) with those arguments checked now, not at
@@ -128,7 +128,7 @@ def public_api(function):
         except TypeError as e:
             raise TypeError(f"{name}: {e}") from None
         _check_bound(name, signature, hints, bound)
-        return functools.partial(checked, **kwargs)
+        return functools.partial(checked, **bound.kwargs)
 
     checked.bind_now = bind_now
     checked.__checked_arguments__ = True
@@ -137,7 +137,10 @@ def public_api(function):
 
 def _check_bound(name: str, signature, hints: dict, bound) -> None:
     """Checks the arguments in `bound` (types, configs' fields and relations, constraints),
-    naming function `name` and the argument."""
+    naming function `name` and the argument; a NumPy scalar argument, or one in a list or
+    tuple argument, is replaced in `bound` by the Python number it holds (python_numbers)."""
+    for argument, value in list(bound.arguments.items()):
+        bound.arguments[argument] = python_numbers(value)
     for argument, value in bound.arguments.items():
         hint = hints.get(argument)
         if hint is None:
@@ -170,6 +173,25 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
     for argument, value in bound.arguments.items():  # every type is right: the values
         for constraint in _constraints(hints.get(argument))[1]:
             _check_constraint(name, argument, value, constraint)
+
+
+def python_numbers(value):
+    """`value` with NumPy scalars as the Python numbers they hold (python_scalar): the value
+    itself, or a list or tuple's items (a new list or tuple, only if one is a NumPy scalar).
+    The API takes np.float32(0.2) as the number 0.2 and keeps it as one: a NumPy scalar kept
+    in a config or a result would reach what cannot write it (JSON: "int64 is not JSON
+    serializable") long after the call that gave it."""
+    if isinstance(value, (list, tuple)) and any(_numpy_scalar(item) for item in value):
+        items = [python_scalar(item) for item in value]
+        return items if isinstance(value, list) else (
+            type(value)(*items) if hasattr(value, "_fields") else type(value)(items))
+    return python_scalar(value) if _numpy_scalar(value) else value
+
+
+def _numpy_scalar(value) -> bool:
+    """A NumPy number or bool, as a scalar or a 0-d array (one python_scalar converts)."""
+    return (type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0
+            and getattr(getattr(value, "dtype", None), "kind", "") in "biuf")
 
 
 def bound_arguments(function, **kwargs):
@@ -218,8 +240,9 @@ def _check_constraint(function: str, name: str, value, constraint) -> None:
             at = where if items is not value else f"{where}[{k}]"
             if not isinstance(item, (int, float)) or isinstance(item, bool):
                 continue  # the type check said what the items may be
-            if not math.isfinite(item):
-                raise ValueError(f"{at} must be a finite number, got {item!r}")
+            problem = number_problem(item)
+            if problem is not None:
+                raise ValueError(f"{at} {problem}")
             if not constraint.contains(item):
                 raise ValueError(f"{at} {constraint.words(item)}, got {item!r}")
 
@@ -296,7 +319,8 @@ def _describe_hint(hint) -> str:
 
 
 def _short_repr(value) -> str:
-    text = repr(value)
+    from tegrasp_drake.rig.ranges import shown
+    text = shown(value, limit=10**9)
     return text if len(text) <= 60 else text[:57] + "..."
 
 
@@ -308,7 +332,8 @@ def public_dataclass(cls):
     values calls first). A keyword argument or an attribute that is not a field is refused
     naming the class and what to write (the field a moved setting is now, what replaced a
     removed one, the closest field name); assigning a field of a frozen class, in one line
-    saying how to make a changed copy (FrozenFieldError)."""
+    saying how to make a changed copy (FrozenFieldError). A NumPy scalar given for a field, at
+    construction or assigned, is kept as the Python number it holds (python_numbers)."""
     init = cls.__init__
     parameters = inspect.signature(init).parameters
     if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters.values()):
@@ -322,6 +347,10 @@ def public_dataclass(cls):
             raise TypeError(_no_such_field(cls, unknown))
         init(self, *args, **kwargs)
         if type(self) is cls:  # a subclass's own fields are its own decorator's
+            for field in dataclasses.fields(cls):  # NumPy scalars: python_numbers
+                value = getattr(self, field.name)
+                if python_numbers(value) is not value:
+                    object.__setattr__(self, field.name, python_numbers(value))
             check_field_types(self)
 
     cls.__init__ = checked_init
@@ -359,10 +388,9 @@ def check_field_types(instance) -> None:
                             f"(not a single string), got {type(value).__name__} "
                             f"{_short_repr(value)}; e.g. {name}=[{_short_repr(value)}]")
         if hasattr(value, "__array__") and not isinstance(value, (list, tuple)):
-            # an array's truth and equality are elementwise: refused here, not deep inside
-            raise TypeError(f"{cls.__name__}: field '{name}' must be a list or tuple, got "
-                            f"{type(value).__module__}.{type(value).__name__}; give "
-                            f"{name}={name}.tolist()")
+            from tegrasp_drake.rig.typed_yaml import array_for_list_words
+            raise TypeError(f"{cls.__name__}: field '{name}' "
+                            f"{array_for_list_words(value, name)}")
     from tegrasp_drake.rig.typed_yaml import check_instance
     check_instance(instance, cls.__name__)  # nested configs, enums, arrays, items
 
@@ -377,7 +405,7 @@ def _set_field_only(self, name: str, value) -> None:
     otherwise be kept and ignored) is an AttributeError naming its class and what to write."""
     if name not in type(self).__dataclass_fields__ and not name.startswith("_"):
         raise AttributeError(_no_such_field(type(self), name))
-    object.__setattr__(self, name, value)
+    object.__setattr__(self, name, python_numbers(value))
 
 
 def _refuse_change(self, name: str, value=None) -> None:

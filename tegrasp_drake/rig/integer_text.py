@@ -47,6 +47,22 @@ def read_integer(text: str, *, decimal_only: bool = False) -> int:
     return sign * value
 
 
+def integer_digits(value: int) -> int:
+    """How many decimal digits |value| has, found from its bit length: Python refuses to write
+    an integer of more than 4300 digits as text, so a huge one is never converted."""
+    magnitude = abs(value)
+    digits = int((max(magnitude.bit_length(), 1) - 1) * math.log10(2)) + 1  # low by at most 1
+    return digits + 1 if magnitude >= 10 ** digits else digits
+
+
+def integer_beyond_problem(value) -> str | None:
+    """For a Python int beyond LIMIT (one given to the Python API, which no reader bounded),
+    the words read_integer's error gives for its text, following "field 'x'"; else None."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) > LIMIT:
+        return _beyond(integer_digits(value))
+    return None
+
+
 def _beyond(digits: int) -> str:
     return (f"is an integer of {digits} digits, beyond the range of any setting (a float's, "
             "at most 1.8e308)")

@@ -1,6 +1,7 @@
 """The arrays an .npz declares, checked from their .npy headers (names, dtypes, sizes)
 before np.load, which would allocate whatever shape a few-kB file declares."""
 
+import io
 import math
 import os
 import stat
@@ -80,20 +81,7 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
             raise NpzHeaderError(f"'{info.filename}' is stored twice in the archive (which "
                                  "one is read would be the zip library's choice)")
         with zip_file.open(info) as member:
-            try:
-                version = npy_format.read_magic(member)
-                if version == (1, 0):
-                    shape, fortran, dtype = npy_format.read_array_header_1_0(
-                        member, max_header_size=_MAX_HEADER_BYTES)
-                elif version == (2, 0):
-                    shape, fortran, dtype = npy_format.read_array_header_2_0(
-                        member, max_header_size=_MAX_HEADER_BYTES)
-                else:
-                    raise ValueError(f"npy format version {version}")
-            except (ValueError, EOFError, OSError, SyntaxError, tokenize.TokenError,
-                    zlib.error) as e:  # numpy parses the header's dict as Python
-                raise NpzHeaderError(f"'{name}' is not a numpy array ({type(e).__name__}: "
-                                     f"{e})") from None
+            shape, dtype = _read_npy_header(member, name)
             header_bytes = member.tell()
         if dtype.kind not in _ALLOWED_KINDS or dtype.hasobject or dtype.fields:
             raise NpzHeaderError(f"'{name}' holds {dtype} values; only numbers and text are "
@@ -106,6 +94,50 @@ def npz_array_headers(zip_file: zipfile.ZipFile) -> dict[str, tuple[tuple, np.dt
                                  f"its member holds {info.file_size - header_bytes} bytes")
         headers[name] = (tuple(shape), dtype, data_bytes)
     return headers
+
+
+# The .npy format versions read, each with the size of its header-length field (numpy's
+# format.py: a little-endian uint16 in 1.0, uint32 in 2.0).
+_HEADER_LENGTH_FORMS = {(1, 0): "<H", (2, 0): "<I"}
+
+
+def _read_npy_header(member, name: str) -> tuple[tuple, np.dtype]:
+    """(shape, dtype) of the .npy array `member` (a zip member at its start) holds, read with
+    numpy's header parser once the header's declared length is known to be a plain array's;
+    NpzHeaderError in the package's words otherwise. numpy's own messages are not passed on:
+    they advise `allow_pickle=True` or `max_header_size`, unsafe and not the user's to set."""
+    try:
+        version = npy_format.read_magic(member)
+    except (ValueError, EOFError, OSError, zlib.error):
+        raise NpzHeaderError(f"'{name}' is not a numpy array (it lacks the .npy magic "
+                             "string)") from None
+    form = _HEADER_LENGTH_FORMS.get(version)
+    if form is None:
+        raise NpzHeaderError(f"'{name}' is of .npy format version "
+                             f"{'.'.join(map(str, version))}, which this does not read")
+    try:
+        length_field = member.read(struct.calcsize(form))
+        declared = struct.unpack(form, length_field)[0] if len(length_field) == len(
+            struct.pack(form, 0)) else None
+        if declared is not None and declared > _MAX_HEADER_BYTES:
+            raise NpzHeaderError(f"'{name}' has a .npy header of {declared} bytes, more than "
+                                 f"the {_MAX_HEADER_BYTES} of any array written here (a "
+                                 "plain array's is a few hundred)")
+        header = member.read(declared) if declared is not None else b""
+    except (OSError, zlib.error):
+        header, declared = b"", None
+    if declared is None or len(header) < declared:
+        raise NpzHeaderError(f"'{name}' ends inside its .npy header")
+    read_header = (npy_format.read_array_header_1_0 if version == (1, 0)
+                   else npy_format.read_array_header_2_0)
+    try:  # the header as read, so that no seek of the member is needed
+        shape, _, dtype = read_header(io.BytesIO(length_field + header),
+                                      max_header_size=_MAX_HEADER_BYTES)
+    except (ValueError, EOFError, OSError, SyntaxError, tokenize.TokenError,
+            zlib.error):  # numpy parses the header's dict as Python
+        raise NpzHeaderError(f"'{name}' has a .npy header that cannot be read as an "
+                             "array's (its shape, dtype and order)") from None
+    return shape, dtype
 
 
 def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
@@ -165,6 +197,16 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
                                  f"{max_bytes} this reads")
         try:
             with np.load(path, allow_pickle=False) as data:
-                return {name: data[name] for name in wanted}
+                return {name: _member_array(data, name) for name in wanted}
         except (RuntimeError, NotImplementedError) as e:
             raise NpzHeaderError(f"a member cannot be read: {e}") from None
+
+
+def _member_array(data, name: str) -> np.ndarray:
+    """The array `name` of an open np.load, its header checked; numpy's own error (which
+    advises allow_pickle=True) said in the package's words."""
+    try:
+        return data[name]
+    except (ValueError, EOFError):
+        raise NpzHeaderError(f"'{name}' cannot be read as the array its .npy header "
+                             "declares") from None

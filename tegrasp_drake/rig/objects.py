@@ -14,7 +14,7 @@ from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z, PALM_Z
 from tegrasp_drake.robotiq.units import STROKE_M
-from tegrasp_drake.rig.ranges import bounded, shorten
+from tegrasp_drake.rig.ranges import bounded, number_problem, real_number, shorten
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 # The entries of an object's `size` [m] for each shape.
@@ -140,6 +140,10 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
     if config.shape not in shapes:
         return "shape", f"names an unknown shape {config.shape!r} (known: {', '.join(shapes)})"
     sizes = OBJECT_SIZES[config.shape]
+    for k, value in enumerate(config.size):  # finite before positive: NaN is said as such
+        problem = number_problem(value)
+        if problem is not None:
+            return f"size[{k}]", problem
     if len(config.size) != len(sizes) or not all(_is_positive(v) for v in config.size):
         return "size", (f"must hold {len(sizes)} positive sizes [{', '.join(sizes)}] in "
                         f"metres for a {config.shape}, got {list(config.size)}")
@@ -152,6 +156,9 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
         value = getattr(config, name)
         if value is None:
             return name, f"is missing: give {words}"
+        problem = number_problem(value)
+        if problem is not None:
+            return name, problem
         if not _is_positive(value):
             return name, f"must be positive ({words}), got {value!r}"
     return None
@@ -226,6 +233,5 @@ def description_differences(recorded: dict, current: dict, *, rtol: float = 1e-9
 
 
 def _is_positive(value) -> bool:
-    """A finite number above zero."""
-    return (isinstance(value, (int, float)) and not isinstance(value, bool)
-            and 0.0 < value < math.inf)
+    """A finite number above zero (a NumPy scalar as the number it holds)."""
+    return number_problem(value) is None and real_number(value) > 0

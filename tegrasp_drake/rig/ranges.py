@@ -7,9 +7,11 @@ first value outside its range or choice."""
 import collections.abc
 import dataclasses
 import math
+import sys
 import types
 import typing
 
+from tegrasp_drake.rig.integer_text import integer_beyond_problem, integer_digits
 from tegrasp_drake.rig.number_text import number_text
 
 _KEY = "tegrasp_range"
@@ -172,14 +174,43 @@ def field_range(cls: type, name: str) -> Range:
 
 
 def python_scalar(value):
-    """A NumPy scalar as the Python one it holds (np.int64(3) -> 3); other values unchanged."""
+    """A NumPy scalar as the Python one it holds (np.int64(3) -> 3, np.float32(0.2) -> 0.2 to
+    float32's precision, np.longdouble as a float); other values unchanged."""
     if type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0:
-        return value.item()
+        item = value.item()
+        if type(item).__module__ == "numpy" and hasattr(item, "is_integer"):  # longdouble
+            return float(item)
+        return item
     return value
+
+
+def real_number(value) -> int | float | None:
+    """`value` as the Python number it is (a NumPy scalar of any real dtype as the int or
+    float it holds: python_scalar), None if it is no number (a bool, text, an array, a
+    complex number). Every check that asks whether a value is a number asks this, so that
+    np.float32(0.2) is judged as 0.2, never refused as if it were not positive."""
+    value = python_scalar(value)
+    return value if _is_number(value) else None
 
 
 def _is_number(value) -> bool:
     return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def number_problem(value) -> str | None:
+    """Why `value` cannot be a setting's number, in words that follow "field 'x'": not a
+    number, not finite (NaN, an infinity), or an integer beyond a float's range (the words
+    the YAML and --set readers give its text); None for a finite number. Every range check
+    asks this first, so that such a value is never judged, or refused, by its size."""
+    value = python_scalar(value)
+    if not _is_number(value):
+        return f"must be a finite number, got {type(value).__name__} {shown(value)}"
+    beyond = integer_beyond_problem(value)
+    if beyond is not None:
+        return beyond
+    if not math.isfinite(value):
+        return f"must be a finite number, got {type(value).__name__} {shown(value)}"
+    return None
 
 
 def is_integer(value) -> bool:
@@ -201,23 +232,26 @@ def _values(value, path: str):
         yield path, value
 
 
-def check_ranges(config, source: str, where: str = "") -> None:
+def check_ranges(config, source: str, where: str = "", *, numbers_only: bool = False) -> None:
     """ConfigError naming the first field of `config` (a dataclass instance, and everything
     it holds) whose value is not a finite number inside its declared Range, or not one of
-    its declared Choice's names."""
+    its declared Choice's names. numbers_only: only whether each number of a field with a
+    Range is one (number_problem), for a check of relations that must not judge a NaN by
+    its size."""
     if type(config) in _FOREIGN:
-        _check_foreign(config, source, where)
+        _check_foreign(config, source, where, numbers_only)
         return
     if not dataclasses.is_dataclass(config) or isinstance(config, type):
         return
     for path, value, field in _declared_fields(config, where):
-        _check_not_empty(value, field, source, path)
-        _check_length(value, field, source, path)
-        _check_distinct(value, field, source, path)
+        if not numbers_only:
+            _check_not_empty(value, field, source, path)
+            _check_length(value, field, source, path)
+            _check_distinct(value, field, source, path)
         declared = range_of(field)
         if declared is not None and value is not None:
-            _check_value(value, declared, source, path)
-        _check_held(value, source, path)
+            _check_value(value, declared, source, path, numbers_only)
+        _check_held(value, source, path, numbers_only)
 
 
 def _declared_fields(config, where: str):
@@ -250,7 +284,7 @@ def _check_distinct(value, field: dataclasses.Field, source: str, path: str) -> 
             continue  # a type error, which load_typed names
         if name in seen:
             from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: on checking
-            raise ConfigError(f"{source}: field '{path}' names {shorten(repr(name))} twice "
+            raise ConfigError(f"{source}: field '{path}' names {shown(name)} twice "
                               f"(items {value.index(name)} and {k}); list each of its "
                               f"{field.metadata[_DISTINCT_KEY]} once")
         seen.add(name)
@@ -265,7 +299,7 @@ def _check_length(value, field: dataclasses.Field, source: str, path: str) -> No
                  else type(value).__name__)
         from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
         raise ConfigError(f"{source}: field '{path}' must hold {length} {items}, got {count}: "
-                          f"{shorten(repr(value))}")
+                          f"{shown(value)}")
 
 
 def _field_default(field: dataclasses.Field):
@@ -289,40 +323,41 @@ def _check_not_empty(value, field: dataclasses.Field, source: str, path: str) ->
         return
     from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
     raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it out for "
-                      f"its default, {shorten(repr(default))}")
+                      f"its default, {shown(default)}")
 
 
-def _check_value(value, declared: "Range | Choice", source: str, path: str) -> None:
+def _check_value(value, declared: "Range | Choice", source: str, path: str,
+                 numbers_only: bool = False) -> None:
     from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
     if isinstance(declared, Choice):
-        if value not in declared.names:
+        if value not in declared.names and not numbers_only:
             raise ConfigError(f"{source}: field '{path}' {declared.words()}, got "
-                              f"{type(value).__name__} {shorten(repr(value))}")
+                              f"{type(value).__name__} {shown(value)}")
         return
-    if declared.length is not None and (not isinstance(value, (list, tuple))
-                                        or len(value) != declared.length):
+    if declared.length is not None and not numbers_only and (
+            not isinstance(value, (list, tuple)) or len(value) != declared.length):
         count = (f"{len(value)} elements" if isinstance(value, (list, tuple))
                  else type(value).__name__)
         raise ConfigError(f"{source}: field '{path}' must hold {declared.length} numbers"
                           f"{' [' + declared.unit + ']' if declared.unit else ''}, got "
-                          f"{count}: {shorten(repr(value))}")
+                          f"{count}: {shown(value)}")
     for item_path, item in _values(value, path):
         item = python_scalar(item)
         if item is None:
             continue
-        if not _is_number(item) or not math.isfinite(item):
-            raise ConfigError(f"{source}: field '{item_path}' must be a finite number, "
-                              f"got {type(item).__name__} {shorten(repr(item))}")
-        if not declared.contains(item):
+        problem = number_problem(item)
+        if problem is not None:
+            raise ConfigError(f"{source}: field '{item_path}' {problem}")
+        if not declared.contains(item) and not numbers_only:
             raise ConfigError(f"{source}: field '{item_path}' {declared.words(item)}, "
                               f"got {item!r}")
 
 
-def _check_foreign(config, source: str, where: str) -> None:
+def _check_foreign(config, source: str, where: str, numbers_only: bool = False) -> None:
     """A Drake config object against the table declare_ranges holds for its class."""
     for name, declared in _FOREIGN[type(config)].items():
         _check_value(getattr(config, name), declared, source,
-                     f"{where}.{name}" if where else name)
+                     f"{where}.{name}" if where else name, numbers_only)
 
 
 def shorten(text: str, limit: int = 80) -> str:
@@ -332,17 +367,25 @@ def shorten(text: str, limit: int = 80) -> str:
     return f"{text[:limit]}... ({len(text)} characters)"
 
 
-def _check_held(value, source: str, path: str) -> None:
+def shown(value, limit: int = 80) -> str:
+    """`value` as an error echoes it: its repr, shortened; an integer Python will not write
+    as text (over 4300 digits) by its length alone."""
+    if isinstance(value, int) and abs(value) > sys.float_info.max:
+        return f"<an integer of {integer_digits(value)} digits>"
+    return shorten(repr(value), limit)
+
+
+def _check_held(value, source: str, path: str, numbers_only: bool = False) -> None:
     if type(value) in _FOREIGN or (dataclasses.is_dataclass(value)
                                    and not isinstance(value, type)):
-        check_ranges(value, source, path)
+        check_ranges(value, source, path, numbers_only=numbers_only)
     elif isinstance(value, collections.abc.Mapping):
         for key, item in value.items():
-            _check_held(item, source, f"{path}.{key}")
+            _check_held(item, source, f"{path}.{key}", numbers_only)
     elif isinstance(value, (list, tuple)):
         for k, item in enumerate(value):
             if dataclasses.is_dataclass(item) or type(item) in _FOREIGN:
-                check_ranges(item, source, f"{path}[{k}]")
+                check_ranges(item, source, f"{path}[{k}]", numbers_only=numbers_only)
 
 
 def _numeric(hint) -> bool:

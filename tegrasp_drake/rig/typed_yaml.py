@@ -25,7 +25,7 @@ import yaml
 from tegrasp_drake.rig.core_schema_yaml import (compose, construct, yaml11_only_boolean,
                                                 yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
-from tegrasp_drake.rig.ranges import python_scalar, shorten
+from tegrasp_drake.rig.ranges import number_problem, python_scalar, shorten, shown
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
@@ -534,8 +534,8 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
         if dataclasses.is_dataclass(value):
             check_instance(value, source, path)
     elif origin in (list, tuple, collections.abc.Sequence):
-        if type(value).__module__ == "numpy" and hasattr(value, "tolist"):
-            value = value.tolist()
+        if getattr(value, "ndim", 0) >= 1 and not isinstance(value, (list, tuple)):
+            raise ConfigTypeError(f"{source}: {_field(path)}{array_for_list_words(value, path)}")
         if not isinstance(value, (list, tuple)):
             _refuse_type(value, _type_words(hint), path, source)
         arguments = [a for a in typing.get_args(hint) if a is not Ellipsis]
@@ -552,11 +552,25 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
             _check_instance_value(item, arguments[1], f"{path}.{key}", source)
     elif hint in _SCALAR_WORDS:
         value = python_scalar(value)
+        if hint in (int, float) and _is_scalar(value, int):  # 10**400: no reader bounded it
+            problem = number_problem(value)
+            if problem is not None:
+                raise ConfigError(f"{source}: {_field(path)}{problem}")
         if not _is_scalar(value, hint) and not (hint is float and isinstance(value, float)):
             _check_value(value, hint, path, source)  # the YAML path's words for a scalar
         _check_text(value, path, source)
     elif isinstance(hint, type) and origin is None and not isinstance(value, hint):
         _refuse_type(value, _type_words(hint), path, source)
+
+
+def array_for_list_words(array, path: str) -> str:
+    """Why a NumPy array cannot be a list field's value, and what to give, in words that
+    follow "field 'x'": its truth and equality are elementwise, so a check or a comparison
+    deep inside would fail with no field named (a public dataclass's constructor and every
+    public function's config argument refuse it in these words)."""
+    name = re.sub(r"\[\d+\]$", "", path).rsplit(".", 1)[-1]
+    return (f"must be a list or tuple, got {type(array).__module__}.{type(array).__name__}; "
+            f"give {name}={name}.tolist()")
 
 
 def _type_words(hint) -> str:
@@ -603,7 +617,7 @@ def _check_text(value, path: str, source: str) -> None:
     if isinstance(value, str):
         problem = text_problem(value)
         if problem:
-            raise ConfigError(f"{source}: field '{path}' {problem}, got {shorten(repr(value))}")
+            raise ConfigError(f"{source}: field '{path}' {problem}, got {shown(value)}")
 
 
 def _is_scalar(value, hint) -> bool:
@@ -612,7 +626,7 @@ def _is_scalar(value, hint) -> bool:
     if isinstance(value, bool):
         return False
     if hint is float:
-        return isinstance(value, (int, float)) and math.isfinite(value)
+        return isinstance(value, (int, float)) and number_problem(value) is None
     return isinstance(value, hint)
 
 
@@ -647,7 +661,7 @@ def _check_drake_scalars(data, schema, source: str, where: str) -> None:
 def require(condition: bool, source: str, path: str, words: str, value) -> None:
     """Raises ConfigError "SOURCE: field 'PATH' WORDS, got VALUE" unless `condition`."""
     if not condition:
-        raise ConfigError(f"{source}: field '{path}' {words}, got {shorten(repr(value))}")
+        raise ConfigError(f"{source}: field '{path}' {words}, got {shown(value)}")
 
 
 def _refuse_tag(value, path: str, source: str) -> None:
@@ -740,4 +754,4 @@ def _field(path: str) -> str:
 
 
 def _describe(value) -> str:
-    return f"{type(value).__name__} {shorten(repr(value))}"
+    return f"{type(value).__name__} {shown(value)}"

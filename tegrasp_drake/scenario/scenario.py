@@ -442,6 +442,9 @@ def _validated(scenario: Scenario, source: str, *, allow_long: bool,
     require(isinstance(scenario.controller, entry.config), source, "controller",
             f"must be a controller's config, e.g. {entry.config.__name__}(), not its name "
             "or class", scenario.controller)
+    # Each number finite first, then what relates them: a NaN mass is said to be not finite,
+    # not "not positive"; a NaN force not "too large".
+    check_ranges(scenario, source, numbers_only=True)
     scenario = dataclasses.replace(scenario, object=resolve_object(scenario.object, source,
                                                                    loaded=loaded))
     disturbance = scenario.disturbance

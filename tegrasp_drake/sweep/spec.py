@@ -20,7 +20,7 @@ from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.ranges import number_problem, real_number, shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
                                           keys_overlap)
 
@@ -283,7 +283,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     seen_markers = set()
     for offset in spec.grid:
         if (len(offset) != 2
-                or not all(is_number(v) and math.isfinite(v) for v in offset)):
+                or not all(number_problem(v) is None for v in offset)):
             fail("grid", f"marker offset {offset!r} is not a pair of finite numbers (m)")
         key = _offset_key(offset)
         if key in seen_markers:
@@ -383,7 +383,8 @@ def _check_user_object(name, config, fail):
 
 
 def is_number(value) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
+    """A number (a NumPy scalar as the one it holds), not a bool."""
+    return real_number(value) is not None
 
 
 def _offset_key(offset) -> tuple[int, int]:

@@ -4,9 +4,15 @@ echoed, a fraction is told the field takes whole numbers and the advice is follo
 valid input, YAML 1.1's base-60 and other forms are text, a leading zero is decimal and 0x
 hexadecimal, and a quoted number is text in Drake's config sections too."""
 
+import dataclasses
+import types
+import typing
+
 import pytest
 
+import tegrasp_drake as T
 from tegrasp_drake.hardware.config import LoadHardwareConfig
+from tegrasp_drake.rig.ranges import Range, range_of
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
@@ -49,6 +55,79 @@ def test_a_logged_scenario_with_a_5000_digit_integer_is_a_config_error():
     from tegrasp_drake.scenario.scenario import scenario_from_yaml
     with pytest.raises(ConfigError, match="random_seed.*5000 digits"):
         scenario_from_yaml(f"random_seed: {'7' * 5000}\n", "the log's scenario")
+
+
+# Rule: a Python int handed to the API (a field of a config, a scenario changed after loading)
+# meets the same bound as integer text: beyond a float's range it is refused naming the field,
+# in the readers' words, never Python's "int too large to convert to float".
+BEYOND_FLOAT = 10 ** 400
+
+
+def _public_configs() -> list[type]:
+    """The public dataclasses that build from their defaults alone."""
+    def has_default(field) -> bool:
+        return (field.default is not dataclasses.MISSING
+                or field.default_factory is not dataclasses.MISSING)
+    return [cls for cls in (getattr(T, name) for name in T.__all__)
+            if isinstance(cls, type) and dataclasses.is_dataclass(cls)
+            and all(has_default(field) for field in dataclasses.fields(cls))]
+
+
+def _beyond_float(hint, length: int):
+    """A value of type `hint` holding BEYOND_FLOAT (in each list, `length` of them), or None
+    for a type that holds no number where a value can be made (a mapping of names)."""
+    origin = typing.get_origin(hint)
+    if origin in (typing.Union, types.UnionType):
+        made = [_beyond_float(m, length) for m in typing.get_args(hint) if m is not type(None)]
+        return next((value for value in made if value is not None), None)
+    if origin in (list, tuple):
+        item = _beyond_float(typing.get_args(hint)[0], length)
+        return None if item is None else [item] * length
+    return BEYOND_FLOAT if hint in (int, float) else None
+
+
+def _beyond_float_fields(cls) -> list[tuple[str, object]]:
+    """(name, a value holding BEYOND_FLOAT) of each number field of `cls` with a range."""
+    hints, fields = typing.get_type_hints(cls), []
+    for field in dataclasses.fields(cls):
+        if isinstance(range_of(field), Range):
+            value = _beyond_float(hints[field.name], range_of(field).length or 2)
+            if value is not None:
+                fields.append((field.name, value))
+    return fields
+
+
+@pytest.mark.parametrize("cls", _public_configs(), ids=lambda cls: cls.__name__)
+def test_every_public_config_refuses_an_int_beyond_a_float_naming_the_field(cls):
+    for name, value in _beyond_float_fields(cls):
+        refusal(lambda: cls(**{name: value}), f"{cls.__name__}: field '{name}",
+                "401 digits, beyond the range of any setting")
+
+
+@pytest.mark.parametrize("field, value, named", [
+    ("random_seed", BEYOND_FLOAT, "random_seed"),
+    ("object.mass", BEYOND_FLOAT, "object.mass"),
+    ("placement.offset", [BEYOND_FLOAT, 0.0], "placement.offset[0]"),
+    ("controller.contact_force_n", -BEYOND_FLOAT, "controller.contact_force_n"),
+], ids=["random_seed", "object.mass", "placement.offset", "controller.contact_force_n"])
+@pytest.mark.parametrize("function", ["grasp_plan", "MakeGraspDiagram"])
+def test_a_scenario_changed_to_an_int_beyond_a_float_is_refused_naming_the_field(
+        function, field, value, named):
+    scenario = LoadScenario(name="box")
+    *owners, name = field.split(".")
+    owner = scenario
+    for part in owners:
+        owner = getattr(owner, part)
+    setattr(owner, name, value)
+    refusal(lambda: getattr(T, function)(scenario), f"{function}:", f"field '{named}'",
+            "401 digits")
+
+
+def test_a_5000_digit_int_in_a_text_field_is_refused_without_being_written_out():
+    from tegrasp_drake.rig.objects import ObjectConfig
+    with pytest.raises(TypeError, match="field 'name' must be str, got int <an integer of 5001 "
+                                        "digits>"):
+        ObjectConfig(name=10 ** 5000)
 
 
 # --- 4. an integer field's advice is digits ------------------------------------------------------

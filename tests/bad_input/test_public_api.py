@@ -344,6 +344,82 @@ def test_a_numpy_array_in_a_list_field_is_refused_naming_it(field, value):
         SweepSpec(**{field: value})
 
 
+# Rule: a NumPy number of any real dtype is the number it holds, wherever the API takes a
+# number (a config's field, a changed scenario, a function's argument), and is kept as a
+# Python number; a NaN or an infinity is said to be not finite before any range or relation
+# judges it; an array where a list belongs is refused saying a list is wanted.
+@pytest.mark.parametrize("value", [np.float32(0.2), np.int64(1), np.float16(0.5), np.uint8(1),
+                                   np.float64(0.2)], ids=repr)
+def test_a_numpy_number_for_a_changed_scenario_field_is_the_number_it_holds(value):
+    scenario = LoadScenario(name="box")
+    scenario.object.mass = value
+    scenario.object.size = [np.float32(0.045), np.float32(0.045), np.float32(0.11)]
+    T.grasp_plan(scenario)
+    assert type(scenario.object.mass) in (int, float) and scenario.object.mass == value.item()
+    assert all(type(size) is float for size in scenario.object.size)
+
+
+@pytest.mark.parametrize("field, value, named", [
+    ("mass", np.float64("nan"), "object.mass"),
+    ("mass", np.float32("-inf"), "object.mass"),
+    ("friction", float("nan"), "object.friction"),
+    ("size", [float("nan"), 0.04, 0.1], "object.size[0]"),
+])
+def test_a_nan_or_infinite_number_for_a_changed_scenario_field_is_said_not_finite(
+        field, value, named):
+    scenario = LoadScenario(name="box")
+    setattr(scenario.object, field, value)
+    message = refusal(lambda: T.grasp_plan(scenario), f"field '{named}' must be a finite number")
+    assert "positive" not in message
+
+
+def test_a_nan_force_is_said_not_finite_rather_than_too_large():
+    scenario = LoadScenario(name="box")
+    scenario.disturbance.hit_force_n = [float("nan"), 0.0, 0.0]
+    refusal(lambda: T.grasp_plan(scenario),
+            "field 'disturbance.hit_force_n[0]' must be a finite number")
+
+
+@pytest.mark.parametrize("field", ["size", "color"])
+def test_a_numpy_array_for_a_changed_scenario_list_field_is_refused_saying_a_list_is_wanted(
+        field):
+    scenario = LoadScenario(name="box")
+    setattr(scenario.object, field, np.array(getattr(scenario.object, field)))
+    refusal(lambda: T.grasp_plan(scenario), "grasp_plan: argument 'scenario'",
+            f"field 'object.{field}' must be a list or tuple, got numpy.ndarray; "
+            f"give {field}={field}.tolist()")
+
+
+def test_numpy_numbers_in_event_thresholds_and_a_sweep_grid_are_numbers():
+    from tegrasp_drake.events.event_matcher import check_matcher_config
+    check_matcher_config(T.EventMatcherConfig(
+        event_thresholds={"reach_load": (np.float32(0.5), np.float64(0.4))}))
+    spec = SweepSpec(grid=[[np.float32(0.01), 0.0]], objects=["box"],
+                     controllers=["open_loop"])
+    assert spec.grid[0][0] == np.float32(0.01)
+
+
+def test_a_result_built_from_numpy_numbers_holds_python_numbers():
+    import json
+    result = T.TrialResult(seed=np.int64(3), hold_success=np.bool_(True),
+                           hold_time_s=np.float32(3))
+    assert (type(result.seed), type(result.hold_success), type(result.hold_time_s)) == (
+        int, bool, float)
+    json.dumps([result.seed, result.hold_success, result.hold_time_s])
+
+
+def test_a_numpy_number_given_to_a_public_function_is_passed_on_as_a_python_number():
+    from tegrasp_drake.rig.api_boundary import public_api
+
+    @public_api
+    def takes(count: int, scale: float, offsets: list[float]):
+        return count, scale, offsets
+
+    count, scale, offsets = takes(np.int64(2), np.float32(0.5), [np.float32(0.25), 1.0])
+    assert (type(count), type(scale), [type(o) for o in offsets]) == (int, float,
+                                                                       [float, float])
+
+
 # Rule: a wrong name or folder given to a public function is named with the function and
 # the argument, as the command line names its option.
 def test_an_unknown_controller_name_names_with_controller_and_its_argument():

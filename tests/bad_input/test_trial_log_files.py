@@ -7,6 +7,7 @@ refuse is not streamed either."""
 import io
 import json
 import pathlib
+import struct
 import warnings
 import zipfile
 
@@ -205,6 +206,50 @@ def _rezipped(path, extra_members):
             for name, array in extra_members:
                 archive.writestr(name, _npy(array))
     return path
+
+
+def _npy_with_header(array, header_dict: bytes, padding: int = 0) -> bytes:
+    """A version-2.0 .npy of `array` whose header is `header_dict` and `padding` spaces."""
+    header = header_dict + b" " * padding + b"\n"
+    return (b"\x93NUMPY\x02\x00" + struct.pack("<I", len(header)) + header
+            + np.ascontiguousarray(array).tobytes())
+
+
+def _with_channels_member(path, member: bytes):
+    """`path` (an .npz) rewritten with its 'channels' member replaced by `member`."""
+    with np.load(path) as data:
+        contents = {name: data[name] for name in data.files}
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
+        for name, array in contents.items():
+            archive.writestr(f"{name}.npy", member if name == "channels" else _npy(array))
+    return path
+
+
+def _channels_header(path) -> bytes:
+    with np.load(path) as data:
+        channels = data["channels"]
+    return repr({"descr": channels.dtype.str, "fortran_order": False,
+                 "shape": channels.shape}).encode()
+
+
+# Rule: a member's .npy header that is too long or unreadable is refused in the package's one
+# line (the file, the array, what is wrong, run the trial again), never numpy's own message,
+# which spans lines and advises allow_pickle=True.
+@pytest.mark.parametrize("make_header, expected", [
+    (lambda header: header + b" " * 3_000_000, "'channels' has a .npy header of 3000"),
+    (lambda header: b"{'descr': <f8, 'shape': (}" + b" " * 40, "'channels' has a .npy header "
+                                                              "that cannot be read"),
+], ids=["huge", "unreadable"])
+def test_a_trial_log_member_with_a_bad_npy_header_is_one_line_without_numpys_advice(
+        tmp_path, capfd, make_header, expected):
+    path = trial_log(tmp_path / "trial.npz")
+    with np.load(path) as data:
+        channels = data["channels"]
+    _with_channels_member(path, _npy_with_header(channels, make_header(_channels_header(path))))
+    code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "x.png")], capfd)
+    assert_one_line_error(code, text, str(path), expected, "run the trial again")
+    assert "allow_pickle" not in text and "max_header_size" not in text and "\\n" not in text
+    assert not (tmp_path / "x.png").exists()
 
 
 # Rule: a trial log's zip holds each array once and only the arrays the format has: with two
