@@ -164,26 +164,26 @@ def object_problem(config: ObjectConfig, *, shapes=OBJECT_SHAPES) -> tuple[str, 
     return None
 
 
-def object_fit_problem(config: ObjectConfig, *, xy_bound_m: float = 0.0,
-                       yaw_bound_deg: float = 0.0) -> str | None:
-    """Why an object of valid sizes does not fit the open 2F-85 when it stands on its marker
-    (grasped at its centre), or up to xy_bound_m [m] off it along each axis and yawed up to
-    yaw_bound_deg [deg] (a sweep's placement jitter): its width along the stroke within
-    MAX_WIDTH_M, its near half FINGER_CLEARANCE_M short of the palm (max_depth_m); in words
-    that follow "field 'size'". None if it fits."""
+def object_fit_problem(config: ObjectConfig, *, yaw_bound_deg: float = 0.0) -> str | None:
+    """Why an object of valid sizes does not fit the open 2F-85 grasped at its centre, standing
+    square or yawed up to yaw_bound_deg [deg] (a sweep's placement jitter): its width along the
+    stroke within MAX_WIDTH_M, its near half FINGER_CLEARANCE_M short of the palm
+    (max_depth_m); in words that follow "field 'size'". None if it fits. The jitter's shift
+    off the marker is left out: it moves the object as a marker's misplacement does (which
+    the controllers are there to meet), and widens and deepens nothing; a yaw turns a box's
+    footprint, which does."""
     width, depth = jittered_extents(config, yaw_bound_deg)
     nominal_width = config.width_along_stroke()
-    jittered = xy_bound_m > 0 or yaw_bound_deg > 0
-    at = (f" at its placement jitter's far end ({xy_bound_m * 1000:g} mm off its marker "
-          f"each way, yawed {yaw_bound_deg:g} deg)" if jittered else "")
-    if width + 2 * xy_bound_m > MAX_WIDTH_M:
-        return (f"makes the object {(width + 2 * xy_bound_m) * 1000:.1f} mm wide along the finger stroke"
-                + f"{at}, more than the {MAX_WIDTH_M * 1000:.1f} mm the 85 mm stroke "
-                f"leaves with {FINGER_CLEARANCE_M * 1000:.1f} mm clearance per finger")
+    at = (f" yawed {yaw_bound_deg:g} deg (the placement jitter's far end)"
+          if yaw_bound_deg > 0 else "")
+    if width > MAX_WIDTH_M:
+        return (f"makes the object {width * 1000:.1f} mm wide along the finger stroke{at}, "
+                f"more than the {MAX_WIDTH_M * 1000:.1f} mm the 85 mm stroke leaves with "
+                f"{FINGER_CLEARANCE_M * 1000:.1f} mm clearance per finger")
     deepest = min(max_depth_m(nominal_width), max_depth_m(width))
-    if depth + 2 * xy_bound_m > deepest:
-        return (f"makes the object {(depth + 2 * xy_bound_m) * 1000:.1f} mm deep along the approach"
-                + f"{at}, more than the {deepest * 1000:.1f} mm the 2F-85 takes at a "
+    if depth > deepest:
+        return (f"makes the object {depth * 1000:.1f} mm deep along the approach{at}, more "
+                f"than the {deepest * 1000:.1f} mm the 2F-85 takes at a "
                 f"{nominal_width * 1000:.1f} mm width: grasped at its centre, its near half "
                 f"must end {FINGER_CLEARANCE_M * 1000:.1f} mm short of the palm")
     return None

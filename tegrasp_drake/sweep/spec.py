@@ -301,9 +301,10 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
 def _check_jittered_placements(spec: SweepSpec, source: str, fail) -> None:
     """Each object at each marker, moved and yawed by the placement jitter's far end
     (randomisation.placement_xy_bound_m along each axis, placement_yaw_bound_deg): the load-time
-    checks of a scenario's object and placement (the object fits the open hand, stands on the
-    table, clear of the hand's start pose) hold at every jitter a trial may draw, not only at
-    the marker itself, so that no trial is refused after the sweep has started."""
+    checks of a scenario's object and placement (the object, yawed, fits the open hand; it
+    stands on the table, clear of the hand's start pose, where the shift may put it) hold at
+    every jitter a trial may draw, not only at the marker itself, so that no trial is refused
+    after the sweep has started."""
     from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
     from tegrasp_drake.scenario.scenario import LoadScenario, check_start_clearance
     xy_bound = spec.randomisation.placement_xy_bound_m
@@ -314,12 +315,10 @@ def _check_jittered_placements(spec: SweepSpec, source: str, fail) -> None:
         config = spec.user_objects.get(name) or objects.BUILTIN_OBJECTS.get(name)
         if config is None:  # a built-in of the caller's own list: resolved by the scenario
             continue
-        problem = objects.object_fit_problem(config, xy_bound_m=xy_bound,
-                                             yaw_bound_deg=yaw_bound)
+        problem = objects.object_fit_problem(config, yaw_bound_deg=yaw_bound)
         if problem:
-            fail("randomisation", f"object '{name}': {problem}; give smaller "
-                                  "placement_xy_bound_m or placement_yaw_bound_deg, or a "
-                                  "smaller object")
+            fail("randomisation", f"object '{name}': {problem}; give a smaller "
+                                  "placement_yaw_bound_deg, or a smaller object")
         for offset in spec.grid:
             placement = ObjectPlacementConfig(expected_xy=list(base.placement.expected_xy),
                                               offset=[float(v) for v in offset])

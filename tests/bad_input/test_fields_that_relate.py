@@ -123,24 +123,30 @@ def _sweep_with(obj_size, grid=((0.0, 0.0),), xy_bound_m=0.002, yaw_bound_deg=0.
                                                        placement_yaw_bound_deg=yaw_bound_deg))
 
 
-@pytest.mark.parametrize("xy_bound_m, yaw_bound_deg", [(0.002, 0.0), (0.0, 3.0)])
-def test_a_sweep_object_as_deep_as_the_hand_takes_is_refused_once_jittered(xy_bound_m,
-                                                                          yaw_bound_deg):
+def test_a_sweep_object_as_deep_as_the_hand_takes_is_refused_once_yawed():
     from tegrasp_drake.sweep.spec import validate_spec
     deepest = max_depth_m(0.06)
     validate_spec(_sweep_with([deepest, 0.06, 0.1], xy_bound_m=0.0))  # on its marker: fits
-    refusal(lambda: validate_spec(_sweep_with([deepest, 0.06, 0.1], xy_bound_m=xy_bound_m,
-                                              yaw_bound_deg=yaw_bound_deg)),
+    refusal(lambda: validate_spec(_sweep_with([deepest, 0.06, 0.1], xy_bound_m=0.0,
+                                              yaw_bound_deg=3.0)),
             "field 'randomisation'", "object 'crate'", "deep along the approach",
-            "placement jitter's far end", "short of the palm")
+            "yawed 3 deg (the placement jitter's far end)", "short of the palm")
 
 
-def test_a_sweep_object_as_wide_as_the_stroke_takes_is_refused_once_jittered():
+def test_a_sweep_object_as_wide_as_the_stroke_takes_is_refused_once_yawed():
     from tegrasp_drake.sweep.spec import validate_spec
     validate_spec(_sweep_with([0.03, MAX_WIDTH_M, 0.1], xy_bound_m=0.0))
-    refusal(lambda: validate_spec(_sweep_with([0.03, MAX_WIDTH_M, 0.1])),
+    refusal(lambda: validate_spec(_sweep_with([0.03, MAX_WIDTH_M, 0.1], yaw_bound_deg=3.0)),
             "field 'randomisation'", "wide along the finger stroke",
-            "placement jitter's far end (2 mm off its marker")
+            "yawed 3 deg (the placement jitter's far end)")
+
+
+def test_a_sweep_shift_alone_does_not_make_an_object_too_wide_or_deep():
+    """The jitter's shift moves the object off its marker, as a misplacement does: an object
+    that fits the hand square fits it shifted."""
+    from tegrasp_drake.sweep.spec import validate_spec
+    validate_spec(_sweep_with([max_depth_m(0.06), 0.06, 0.1], xy_bound_m=0.002))
+    validate_spec(_sweep_with([0.03, MAX_WIDTH_M, 0.1], xy_bound_m=0.002))
 
 
 def test_a_sweep_marker_just_clear_of_the_start_pose_is_refused_once_jittered():

@@ -394,7 +394,7 @@ def test_a_plot_of_a_record_whose_perturbation_is_not_its_seeds_draw_is_refused_
 
 @pytest.mark.parametrize("randomisation", [
     RandomisationConfig(), RandomisationConfig(0.0, 0.0, 0.0, 0.0),
-    RandomisationConfig(0.05, 180.0, 0.999999, 1e-12)], ids=["default", "none", "extremes"])
+    RandomisationConfig(0.02, 180.0, 0.999999, 1e-12)], ids=["default", "none", "extremes"])
 def test_the_draws_of_any_randomisation_bounds_are_read(randomisation):
     from tegrasp_drake.sweep.spec import expand_trials, trial_problem
     spec = SweepSpec(base_seed=620, attempts=2, randomisation=randomisation)
