@@ -3,12 +3,15 @@ has gone (`tegrasp ... | head`), a full disk or an I/O error (`tegrasp ... >/dev
 
 While a command runs, `guarded_output()` wraps both streams so that a failed write raises
 OutputStreamError naming the stream, and is remembered even when a caller swallows it
-(argparse ignores an OSError printing --help); a closed pipe stays a BrokenPipeError. The
+(argparse ignores an OSError printing --help); a closed pipe stays a BrokenPipeError, and a
+standard output the shell closed (`>&-`, Python's sys.stdout None) fails every write as a full
+disk does, so that the output is never lost without a word. The
 error boundary (cli.py) asks `unwritable_output()` at the end, tells a failure once with
 `tell_cannot_write`, and points a stream it cannot use at the null device (`detach`), so
 that Python's flush at exit finds nothing to report again."""
 
 import contextlib
+import errno
 import os
 import sys
 
@@ -62,6 +65,18 @@ class _GuardedStream:
         return getattr(self._stream, name)
 
 
+class _ClosedStream:
+    """The standard output of a process started with it closed (`tegrasp ... >&-`): Python
+    gives None, and print() would drop the text and report nothing; every write fails."""
+
+    def write(self, text):
+        raise OSError(errno.EBADF, "it is closed; send it to a file, or to /dev/null to "
+                                   "discard it")
+
+    def flush(self):
+        pass  # nothing was written, nothing is lost
+
+
 _failed_writes: list[OutputStreamError] = []  # this command's, first first
 
 
@@ -73,11 +88,12 @@ def note_failed_write(failure: OutputStreamError) -> None:
 
 @contextlib.contextmanager
 def guarded_output():
-    """stdout and stderr as _GuardedStreams for the block; no failed write remembered yet."""
+    """stdout and stderr as _GuardedStreams for the block, a closed stdout one whose writes
+    fail (_ClosedStream); no failed write remembered yet."""
     _failed_writes.clear()
     original = sys.stdout, sys.stderr
-    guarded = tuple(None if stream is None else _GuardedStream(stream, name)
-                    for stream, name in zip(original, (STANDARD_OUTPUT, STANDARD_ERROR)))
+    guarded = (_GuardedStream(original[0] or _ClosedStream(), STANDARD_OUTPUT),
+               None if original[1] is None else _GuardedStream(original[1], STANDARD_ERROR))
     sys.stdout, sys.stderr = guarded
     try:
         yield

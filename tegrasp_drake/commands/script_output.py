@@ -11,6 +11,7 @@ from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_
                                                 figure_replace_problem)
 from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
                                      output_file_problem, write_atomically)
+from tegrasp_drake.rig.usage_parser import UsageParser
 
 
 def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
@@ -31,10 +32,11 @@ def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
 # EXIT_INTERNAL_ERROR for an exception no check foresaw.
 
 
-class _ScriptParser(argparse.ArgumentParser):
-    """argparse's parser for a script, ending a command line that does not parse with one
-    line, `<script>: error: <what>; <script>.py --help shows the usage`, and EXIT_USAGE
-    (argparse's own error prints the usage first, several lines)."""
+class _ScriptParser(UsageParser):
+    """The package's parser (UsageParser: a text value holding a control character refused)
+    for a script, ending a command line that does not parse with one line, `<script>: error:
+    <what>; <script>.py --help shows the usage`, and EXIT_USAGE (argparse's own error prints
+    the usage first, several lines)."""
 
     def __init__(self, script: str, **keywords):
         super().__init__(prog=f"{script}.py", **keywords)
@@ -89,6 +91,9 @@ class _ScriptParser(argparse.ArgumentParser):
             else:
                 refuse_unusable_output(self._script, path, figure=kind == "figure")
         return parsed
+
+    def refuse(self, message):
+        raise SystemExit(f"{self._script}: error: {message}")
 
     def error(self, message):
         self.exit(EXIT_USAGE, f"{self._script}: error: {error_line(message)}; "

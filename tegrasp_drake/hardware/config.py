@@ -218,6 +218,54 @@ def same_serial_line(a: str, b: str) -> bool:
                 and first.st_rdev == second.st_rdev))
 
 
+def serial_port_problem(port: str) -> str | None:
+    """Why `port` cannot be a serial device's port, in words that follow it, or None: a
+    folder, a file, a pipe, a block device, or a character device that is no terminal
+    (/dev/null takes every command and never answers, so the device would be blamed only
+    when it times out). Nothing is opened (opening some boards' ports resets them). A port
+    not there yet is opened, and named, when the devices start; a pyserial URL (`loop://`)
+    is pyserial's to check."""
+    if "://" in port:
+        return None
+    try:
+        mode = os.stat(port)
+    except FileNotFoundError:
+        return None
+    except OSError as error:
+        return f"cannot be used ({error.strerror or error})"
+    if stat.S_ISDIR(mode.st_mode):
+        return "is a folder, not a serial device"
+    if stat.S_ISREG(mode.st_mode):
+        return "is a file, not a serial device"
+    if not stat.S_ISCHR(mode.st_mode):
+        return "is not a character device, so not a serial device"
+    if _terminal_device(mode.st_rdev) is False:
+        return "is a character device but not a terminal, so not a serial device"
+    return None
+
+
+def _terminal_device(rdev: int) -> bool | None:
+    """Whether the character device `rdev` is a terminal (a serial line, a USB serial
+    adapter, a pseudo-terminal such as the emulators' /dev/pts/N), by the kernel's class of
+    it (sysfs; pseudo-terminals have no entry there, /proc/devices names them 'pts'); None
+    where the system says neither."""
+    major, minor = os.major(rdev), os.minor(rdev)
+    entry = f"/sys/dev/char/{major}:{minor}"
+    if os.path.exists(f"{entry}/subsystem"):
+        return os.path.basename(os.path.realpath(f"{entry}/subsystem")) == "tty"
+    try:
+        with open("/proc/devices") as devices:
+            for line in devices:
+                if line.strip() == "Block devices:":
+                    break
+                number, _, name = line.strip().partition(" ")
+                if number == str(major):
+                    return name == "pts" or name.startswith("tty") or name == "/dev/tty"
+    except OSError:
+        return None
+    return None
+
+
 # A silence the watchdog may call a device's fault: more than this many of its update periods,
 # so that one late sample never trips it (the defaults, DEFAULT_TIMEOUTS, allow 5-20).
 WATCHDOG_MIN_PERIODS = 2
@@ -265,6 +313,12 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     if problem:
         raise ConfigError(f"{source}: {problem}")
     tactile, gripper = config.tactile.port, config.gripper.port
+    for field, port in (("tactile.port", tactile), ("gripper.port", gripper)):
+        problem = serial_port_problem(port)
+        if problem:
+            raise ConfigError(
+                f"{source}: field '{prefix}{field}': {port} {problem}; give the device's "
+                "serial port (e.g. /dev/ttyUSB0, or the /dev/pts/N `tegrasp emulate` prints)")
     if same_serial_line(tactile, gripper):
         raise ConfigError(
             f"{source}: fields '{prefix}tactile.port' ({tactile!r}) and '{prefix}gripper.port' "

@@ -1,10 +1,13 @@
 """The argument parser of every command line in the package (`tegrasp`, its subcommands and
 the `python -m` docs commands): a command line that does not parse is refused in one line
-(docs/user-guide.md, "Exit codes"), never argparse's usage block."""
+(docs/user-guide.md, "Exit codes"), never argparse's usage block; a text value holding a
+control character is refused naming its option, as a config's text field is."""
 
 import argparse
+import os
 
 EXIT_USAGE = 2  # a command line that does not parse (argparse's own code)
+EXIT_BAD_INPUT = 1  # a command line that parses, with a value that cannot be used
 
 
 class UsageParser(argparse.ArgumentParser):
@@ -12,7 +15,41 @@ class UsageParser(argparse.ArgumentParser):
     `PROG: error: <what> (see PROG --help)`, the user's text quoted safely
     (files.error_line), and EXIT_USAGE."""
 
+    def parse_known_args(self, args=None, namespace=None):
+        """argparse's parse_known_args, a text value of this parser's arguments that holds
+        a control character refused (text_argument_problem); a subcommand's parser checks
+        its own arguments."""
+        parsed, extras = super().parse_known_args(args, namespace)
+        problem = text_argument_problem(self, parsed)
+        if problem:
+            self.refuse(problem)
+        return parsed, extras
+
+    def refuse(self, message):
+        """Ends a command line that parses, whose value `message` says cannot be used: one
+        line on stderr and EXIT_BAD_INPUT."""
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
+
     def error(self, message):
         from tegrasp_drake.rig.files import error_line
         self.exit(EXIT_USAGE, f"{self.prog}: error: {error_line(message)} "
                               f"(see {self.prog} --help)\n")
+
+
+def text_argument_problem(parser: argparse.ArgumentParser, namespace) -> str | None:
+    """The first of `parser`'s arguments in `namespace` whose text (a value, or one of a
+    repeated option's) holds a control character (typed_yaml.text_problem: an escape would
+    drive the terminal the value is echoed on, a NUL is refused deep in a check), named as
+    the user wrote it, or None."""
+    from tegrasp_drake.rig.ranges import shorten
+    from tegrasp_drake.rig.typed_yaml import text_problem
+    for action in parser._actions:
+        values = getattr(namespace, action.dest, None)
+        for value in values if isinstance(values, (list, tuple)) else [values]:
+            text = os.fspath(value) if isinstance(value, (str, os.PathLike)) else None
+            problem = text_problem(text) if isinstance(text, str) else None
+            if problem:
+                name = (action.option_strings[0] if action.option_strings
+                        else action.metavar or action.dest)
+                return f"{name} {problem}, got {shorten(repr(text))}"
+    return None

@@ -504,12 +504,12 @@ def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
     path = pathlib.Path(path)
-    problem = file_problem(path)
+    problem = file_problem(path, devices=())  # /dev/null, /dev/zero: not a log either
     if problem == "does not exist":
         raise RunLogError(f"run log '{path}' does not exist (`tegrasp hardware --log FILE` "
                           "writes one)")
-    if problem or not path.is_file():  # /dev/null, /dev/zero: not a run log either
-        raise RunLogError(f"run log '{path}' {problem or 'is a device, not a file'} (a run "
+    if problem:
+        raise RunLogError(f"run log '{path}' {problem} (a run "
                           "log is the file `tegrasp hardware --log FILE` writes)")
     decoded = {channel: [] for channel in MESSAGE_TYPES}
     counts = {}

@@ -109,12 +109,12 @@ def check_trial_log_file(path: PathLike) -> None:
     """TrialLogError naming `path` unless it is a regular file, asked before a byte is read:
     every reader of a trial log (plot, the myRIO emulator) starts here."""
     path = pathlib.Path(path)
-    problem = file_problem(path)
+    problem = file_problem(path, devices=())  # /dev/null, /dev/zero: not a log either
     if problem == "does not exist":
         raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp trial "
                             "--out DIR`: DIR/trial.npz, or `tegrasp demo`: out/demo/trial.npz)")
-    if problem or not path.is_file():  # /dev/null, /dev/zero: not a trial log either
-        raise TrialLogError(f"trial log '{path}' {problem or 'is a device, not a file'} (a "
+    if problem:
+        raise TrialLogError(f"trial log '{path}' {problem} (a "
                             "trial log is the trial.npz that `tegrasp trial --out DIR` writes)")
 
 

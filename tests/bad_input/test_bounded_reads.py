@@ -119,6 +119,18 @@ def test_emulate_myrio_refuses_a_trial_that_is_not_a_file_before_reading(tmp_pat
     assert len(errors) == 1 and trial in errors[0] and "not a file" in errors[0], text
 
 
+# Rule: a log given as a device is told what to give, whichever device it is: /dev/zero
+# and /dev/null (which a scenario reader takes as empty text) as /dev/urandom is.
+@pytest.mark.parametrize("argv", [["replay"], ["plot", "trial", "--out", "x.png"]])
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/null", "/dev/urandom"])
+def test_a_log_given_as_a_device_is_told_to_give_a_regular_file(tmp_path, monkeypatch, capfd,
+                                                                argv, device):
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli([*argv[:2], device, *argv[2:]], capfd)
+    assert code == 1
+    assert_one_line_error(code, text, f"'{device}' is a device, not a file; give a regular file")
+
+
 def test_every_npz_reader_refuses_a_device_before_reading():
     from tegrasp_drake.rig.npz_headers import NpzHeaderError, checked_npz_arrays
     with pytest.raises(NpzHeaderError, match="not a regular file"):

@@ -432,6 +432,37 @@ def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, wo
     assert "--help" not in text, text
 
 
+# Rule: a text value on the command line (an option's, a positional's, one of a repeated
+# option's) holding a control character is bad input, exit 1, in one line naming the option,
+# whichever command takes it, as a config's text field is: an escape would drive the terminal
+# the value is echoed on.
+@pytest.mark.parametrize("argv, name", [
+    (["emulate", "jaco", "--scheduling", "normal", "--lcm-url",
+      "udpm://239.255.76.67:7667\x07"], "--lcm-url holds a control character (character 0x07)"),
+    (["emulate", "jaco", "--scheduling", "normal", "--lcm-url",
+      "udpm://239.255.76.67:7667\x1b[31m"], "--lcm-url holds an escape (character 0x1b)"),
+    (["replay", "run\x1b[2J.lcmlog"], "LOG holds an escape"),
+    (["sweep", "--dry-run", "--out", "sw\x00"], "--out holds a NUL"),
+    (["trial", "--set", "object.name=\x7f"], "--set holds a DEL"),
+])
+def test_a_control_character_in_an_option_is_refused_naming_it(argv, name, tmp_path,
+                                                                monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(argv, capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, name, "printable characters only; remove it")
+    assert "\x1b" not in text and "\x07" not in text  # echoed escaped, never raw
+
+
+def test_a_control_character_in_an_analysis_script_option_is_refused_naming_it(capsys):
+    from tegrasp_drake.commands.script_output import script_parser
+    parser = script_parser("some_script", "Does something.")
+    parser.add_argument("--label")
+    with pytest.raises(SystemExit) as exit_:
+        parser.parse_args(["--label", "a\x1bb"])
+    assert str(exit_.value.code).startswith("some_script: error: --label holds an escape")
+
+
 # Rule: a --set that is no KEY=VALUE with KEY a dotted field name (an empty key or name, no
 # '=') is a command line that does not parse, refused as `--set ''` is, with exit code 2; so
 # is such a --config-set (a hardware config's field), its example one of that config's.

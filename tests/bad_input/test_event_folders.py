@@ -243,6 +243,24 @@ def test_a_relative_xdg_data_home_is_ignored(monkeypatch, tmp_path, caplog):
     assert "relative/dir" in caplog.text and "not an absolute path" in caplog.text
 
 
+# Rule: an events folder the user named that does not exist is refused whatever the
+# controllers (a typo would otherwise go unnoticed), a dry run's too, by --events or the
+# variable.
+@pytest.mark.parametrize("by_variable", [False, True], ids=["--events", "TEGRASP_EVENTS_DIR"])
+def test_a_missing_events_folder_is_refused_when_no_controller_reads_events(
+        tmp_path, monkeypatch, capfd, by_variable):
+    missing = str(tmp_path / "no_such_folder")
+    monkeypatch.delenv("TEGRASP_EVENTS_DIR", raising=False)
+    if by_variable:
+        monkeypatch.setenv("TEGRASP_EVENTS_DIR", missing)
+    code, text = run_cli(["sweep", "--dry-run", "--objects", "box", "--controllers",
+                          "open_loop", "--attempts", "1", "--out", str(tmp_path / "sw"),
+                          *([] if by_variable else ["--events", missing])], capfd)
+    assert_one_line_error(code, text, f"{missing} does not exist" if by_variable
+                          else f"--events {missing}: does not exist")
+    assert code == 1
+
+
 # Rule: the environment variable naming the events folder (TEGRASP_EVENTS_DIR) is refused by
 # every command that reads events when the folder it names does not exist, as --events is, in
 # one line naming the variable; never the package's events in silence. XDG_DATA_HOME is every

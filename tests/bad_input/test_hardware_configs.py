@@ -240,6 +240,42 @@ def test_a_config_with_such_a_timeout_is_one_line(tmp_path, capfd):
     assert_one_line_error(code, text, "field 'watchdog.arm_timeout'", "give more than 0.02 s")
 
 
+# Rule: a serial port field naming something that is not a terminal device (a folder, a
+# file, /dev/null, which takes every command and never answers) is refused when the config
+# is checked, naming the field and the path, before any device is waited for; a
+# pseudo-terminal (the emulators' /dev/pts/N) and a port not there yet are taken.
+@pytest.mark.parametrize("field", ["gripper.port", "tactile.port"])
+@pytest.mark.parametrize("port, words", [
+    ("/tmp", "/tmp is a folder, not a serial device"),
+    ("/etc/passwd", "/etc/passwd is a file, not a serial device"),
+    ("/dev/null", "/dev/null is a character device but not a terminal"),
+])
+def test_a_serial_port_that_is_no_terminal_is_refused_naming_the_field(
+        tmp_path, capfd, field, port, words):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set",
+                          f"{field}={port}", "--log", str(tmp_path / "run.lcmlog")], capfd)
+    assert code == 1
+    assert_one_line_error(code, text, f"field '{field}': {words}", "give the device's serial port")
+
+
+def test_a_pseudo_terminal_and_a_port_not_there_yet_are_taken(tmp_path):
+    master, slave, port = open_raw_pty()
+    try:
+        config = LoadHardwareConfig(_written_default_config(tmp_path), overrides=[
+            f"gripper.port={port}", "tactile.port=/dev/ttyACM-not-plugged-in"])
+    finally:
+        os.close(master), os.close(slave)
+    assert config.gripper.port == port
+
+
+def _written_default_config(tmp_path):
+    config = tmp_path / "hw.yaml"
+    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    return config
+
+
 # Rule: a text field (a port, a file name, a name) holding a control character is refused at
 # load naming the field, in files, --config-set/--set and the Python API alike: a NUL would
 # reach the operating system's path functions as a ValueError (exit 70).

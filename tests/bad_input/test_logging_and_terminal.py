@@ -89,6 +89,31 @@ def test_a_command_writing_to_a_full_disk_is_refused_in_one_line(monkeypatch):
                                                                   [FULL_DISK_LINE])
 
 
+# Rule: a standard output the shell closed (`>&-`; Python's sys.stdout is None) loses what
+# the command writes, as a full disk does, and is told as one: one line, EXIT_ERROR.
+CLOSED_STDOUT_LINE = ("tegrasp: error: cannot write to standard output: it is closed; send "
+                      "it to a file, or to /dev/null to discard it")
+
+
+def test_a_command_writing_to_a_closed_stdout_is_refused_in_one_line(monkeypatch):
+    monkeypatch.setattr(cli, "build_parser",
+                        lambda: parser_of_one_command(lambda args: print("plan")))
+    errors = io.StringIO()
+    monkeypatch.setattr(cli.sys, "stdout", None)
+    monkeypatch.setattr(cli.sys, "stderr", errors)
+    assert cli.main(["say"]) == cli.EXIT_ERROR
+    assert errors.getvalue().splitlines() == [CLOSED_STDOUT_LINE]
+
+
+def test_a_dry_run_sweep_with_its_stdout_closed_is_refused_in_one_line(tmp_path):
+    done = subprocess.run(["sh", "-c", '"$@" >&-', "sh", sys.executable, "-m", "tegrasp_drake",
+                           "sweep", "--dry-run", "--out", str(tmp_path / "sweep")],
+                          stderr=subprocess.PIPE, text=True, env=killed_runs.environment(),
+                          timeout=300)
+    assert (done.returncode, done.stderr.splitlines()) == (cli.EXIT_ERROR,
+                                                           [CLOSED_STDOUT_LINE])
+
+
 def test_an_unwritable_matplotlib_folder_adds_no_lines(tmp_path):
     env = {"HOME": "/proc", "TEGRASP_EVENTS_DIR": "", "XDG_DATA_HOME": "",
            "XDG_CONFIG_HOME": "", "XDG_CACHE_HOME": "", "MPLCONFIGDIR": ""}
