@@ -49,8 +49,11 @@ class Folder:
         if not os.fspath(path).strip():  # not the current folder: as the CLI's --out
             return "is empty; give a folder"
         path = pathlib.Path(path)
-        try:
-            there = path.exists()
+        try:  # not path.exists(): it reads a symlink loop as missing
+            os.stat(path)
+            there = True
+        except (FileNotFoundError, NotADirectoryError):
+            there = False
         except OSError as e:  # a name too long, a symlink loop
             return f"cannot be used ({e.strerror or e})"
         if not there:

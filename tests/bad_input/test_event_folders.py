@@ -261,6 +261,19 @@ def test_a_missing_events_folder_is_refused_when_no_controller_reads_events(
     assert code == 1
 
 
+def test_an_events_folder_that_is_a_symlink_loop_is_named_as_one(tmp_path, monkeypatch, capfd):
+    """A loop is no missing folder: it is said as --scenario says it."""
+    loop = tmp_path / "loop"
+    loop.symlink_to(loop.name)
+    monkeypatch.delenv("TEGRASP_EVENTS_DIR", raising=False)
+    code, text = run_cli(["sweep", "--dry-run", "--objects", "box", "--controllers",
+                          "open_loop", "--attempts", "1", "--out", str(tmp_path / "sw"),
+                          "--events", str(loop)], capfd)
+    assert_one_line_error(code, text, f"--events {loop}",
+                          "Too many levels of symbolic links")
+    assert "does not exist" not in text
+
+
 # Rule: the environment variable naming the events folder (TEGRASP_EVENTS_DIR) is refused by
 # every command that reads events when the folder it names does not exist, as --events is, in
 # one line naming the variable; never the package's events in silence. XDG_DATA_HOME is every
