@@ -294,12 +294,18 @@ def test_a_control_character_in_a_hardware_config_is_refused_naming_the_field(
     assert "\x00" not in message and "\x1b" not in message
 
 
-def test_a_nul_in_a_config_set_port_is_bad_input(tmp_path, capfd):
+def _hardware_with_config_set(tmp_path, capfd, assignment):
+    """(config path, exit code, output) of `tegrasp hardware` on the default config with one
+    --config-set."""
     config = tmp_path / "hw.yaml"
     config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    code, text = run_cli(["hardware", "--config", str(config), "--config-set",
-                          'tactile.port="/dev/x\\0"', "--log", str(tmp_path / "run.lcmlog")],
-                         capfd)
+    code, text = run_cli(["hardware", "--config", str(config), "--config-set", assignment,
+                          "--log", str(tmp_path / "run.lcmlog")], capfd)
+    return config, code, text
+
+
+def test_a_nul_in_a_config_set_port_is_bad_input(tmp_path, capfd):
+    _, code, text = _hardware_with_config_set(tmp_path, capfd, 'tactile.port="/dev/x\\0"')
     assert_one_line_error(code, text, "field 'tactile.port' holds a NUL")
     assert code == 1
 
@@ -311,20 +317,13 @@ def test_a_nul_in_a_config_set_port_is_bad_input(tmp_path, capfd):
 ])
 def test_a_config_set_value_wrong_for_its_field_is_named_as_the_option(tmp_path, capfd,
                                                                        assignment, words):
-    config = tmp_path / "hw.yaml"
-    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    code, text = run_cli(["hardware", "--config", str(config), "--config-set", assignment,
-                          "--log", str(tmp_path / "run.lcmlog")], capfd)
+    config, code, text = _hardware_with_config_set(tmp_path, capfd, assignment)
     assert_one_line_error(code, text, f"{config} --config-set {assignment}: {words}")
     assert code == 1
 
 
 def test_a_config_set_value_that_is_not_yaml_is_named_as_the_option(tmp_path, capfd):
-    config = tmp_path / "hw.yaml"
-    config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    code, text = run_cli(["hardware", "--config", str(config), "--config-set",
-                          "tactile.port=[unclosed", "--log", str(tmp_path / "run.lcmlog")],
-                         capfd)
+    _, code, text = _hardware_with_config_set(tmp_path, capfd, "tactile.port=[unclosed")
     assert_one_line_error(code, text, "--config-set 'tactile.port=[unclosed': not valid YAML",
                           "e.g. tactile.port='a: b'")
 
