@@ -89,6 +89,11 @@ def duration_seconds(text: str) -> float:
                                          "seconds") from None
 
 
+def _seconds(duration) -> float | None:
+    """--duration as a plain float (its typed text kept for the messages no further)."""
+    return None if duration is None else float(duration)
+
+
 def duration_problem(value: float) -> str | None:
     """Why --duration `value` is refused, or None: a number of seconds in [one arm command
     period, MAX_DURATION_S]: a shorter run would end before the controller sent the arm its
@@ -220,7 +225,6 @@ def run(args) -> int:
     problem = args.duration is not None and duration_problem(args.duration)
     if problem:  # a number outside its range: bad input, not a command line that does not parse
         raise SystemExit(f"tegrasp: error: {problem}")
-    duration = None if args.duration is None else float(args.duration)  # the text no further
     scenario = scenario_from_arguments(args)
     if args.config:
         try:
@@ -343,7 +347,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
             result = run_on_hardware(scenario, config=config, events=events,
                                      corrective_events=corrective,
                                      events_dir=_events_folder(events, args, scenario),
-                                     log_path=staged, duration=duration,
+                                     log_path=staged, duration=_seconds(args.duration),
                                      out=progress.write, progress=progress)
     except HardwareNotReadyError as e:
         staged.unlink(missing_ok=True)
