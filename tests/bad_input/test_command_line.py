@@ -404,6 +404,28 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     assert captured.err.startswith(words), captured.err
 
 
+# Rule: a value starting with '-' as a number does (-inf, -1@3) is the option's value, refused
+# by the option's own check naming it, never "expected one argument"; an option the command
+# has is still an option, so `--attempts --dry-run` lacks its argument.
+@pytest.mark.parametrize("argv, words", [
+    (["sweep", "--dry-run", "--attempts", "-inf"], "argument --attempts: '-inf' is not an"),
+    (["sweep", "--dry-run", "--base-seed", "-inf"], "argument --base-seed: '-inf' is not an"),
+    (["hardware", "--config", "/nonexistent/hw.yaml", "--duration", "-inf"],
+     "argument --duration: '-inf' is not a number"),
+    (["emulate", "robotiq", "--inject-fault", "-1@3"],
+     "argument --inject-fault: '-1@3': expected CODE@SECONDS"),
+    (["sweep", "--dry-run", "--attempts", "--dry-run"],
+     "argument --attempts: expected one argument"),
+    (["sweep", "--attempts", "-v"], "argument --attempts: expected one argument"),
+])
+def test_a_value_starting_with_a_minus_is_named_by_its_option(argv, words, tmp_path,
+                                                              monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(argv, capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, words)
+
+
 # Rule: every number option reads its text with the package's one reader (rig.number_text's
 # number_option, rig.integer_text's integer_option): decimal digits with a '-' sign, nothing
 # else that Python's float() or int() reads (`1_0`, another script's digits, spaces, '+'),
