@@ -404,6 +404,16 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     assert captured.err.startswith(words), captured.err
 
 
+# Rule: `tegrasp --version` prints the package's version on standard output and exits 0,
+# not "the following arguments are required: command".
+def test_version_prints_the_packages_version(capfd):
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(["--version"])
+    captured = capfd.readouterr()
+    assert exit_.value.code in (0, None), captured
+    assert captured.out == f"tegrasp {tegrasp_drake.__version__}\n" and captured.err == ""
+
+
 # Rule: a value starting with '-' as a number does (-inf, -1@3) is the option's value, refused
 # by the option's own check naming it, never "expected one argument"; an option the command
 # has is still an option, so `--attempts --dry-run` lacks its argument.
