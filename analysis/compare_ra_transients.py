@@ -6,6 +6,7 @@ for the same pad strike at plant steps of 1, 0.5 and 0.25 ms; prints the contact
 
 import sys
 
+from tegrasp_drake.rig.number_text import number_option
 from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
 from tegrasp_drake.figures.ra_transients import plot_ra_transients
@@ -19,7 +20,7 @@ TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
 def main(argv=None) -> int:
     parser = script_parser("compare_ra_transients", __doc__)
     parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
-    parser.add_number("--speed", type=float, default=0.025, help="finger speed [m/s]",
+    parser.add_number("--speed", type=number_option, default=0.025, help="finger speed [m/s]",
                       allowed=Range(low=0.0, low_open=True, unit="m/s"))
     args = parser.parse_args(argv)
     try:

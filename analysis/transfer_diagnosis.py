@@ -15,6 +15,7 @@ import json
 import pathlib
 import sys
 
+from tegrasp_drake.rig.number_text import number_option
 from tegrasp_drake.commands.script_output import run_script, script_parser
 from tegrasp_drake.rig.event_matching import EventMatchingConfig
 from tegrasp_drake.rig.ranges import field_range
@@ -38,7 +39,7 @@ def main(argv=None) -> int:
     parser = script_parser("transfer_diagnosis", __doc__)
     parser.add_argument("events", help="the events folder the trials read")
     parser.add_argument("runs", nargs="+", help="trial folders (tegrasp trial --out)")
-    parser.add_number("--ra-envelope-hz", type=float, default=0.0,
+    parser.add_number("--ra-envelope-hz", type=number_option, default=0.0,
                       allowed=field_range(EventMatchingConfig, "ra_envelope_hz"))
     args = parser.parse_args(argv)
     for run in map(pathlib.Path, args.runs):

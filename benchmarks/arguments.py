@@ -3,6 +3,7 @@
 
 import argparse
 
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments
 
 
@@ -12,7 +13,8 @@ def benchmark_parser(doc: str, repeats_help: str,
     adds its own before `parse_benchmark_arguments`."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     add_scenario_arguments(parser)
-    parser.add_argument("--repeats", type=int, default=default_repeats, help=repeats_help)
+    parser.add_argument("--repeats", type=integer_option, default=default_repeats,
+                        help=repeats_help)
     parser.add_argument("--json", action="store_true",
                         help="print the figures as one JSON object")
     return parser

@@ -23,6 +23,7 @@ import numpy as np
 from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, EventStatus, LeafSystem
 
+from tegrasp_drake.rig.number_text import number_option
 from tegrasp_drake.emulators.myrio_emulator import (
     MyRioEmulator, MyRioEmulatorConfig, TactileRecording)
 from tegrasp_drake.hardware.myrio.tactile_calibration import TactileCalibration
@@ -199,7 +200,7 @@ def run_driver_benchmark(duration: float = 3.0, *, verbose: bool = True) -> Driv
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--duration", type=float, default=5.0, help="seconds per run")
+    parser.add_argument("--duration", type=number_option, default=5.0, help="seconds per run")
     run_driver_benchmark(parser.parse_args(argv).duration)
     return 0
 

@@ -13,6 +13,7 @@ import argparse
 import dataclasses
 import statistics
 
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.events.events_folder import load_memorized_events
 from benchmarks.plant_floor import record_plant_inputs, run_plant_floor
 from tegrasp_drake.scenario.scenario import LoadScenario, with_controller
@@ -30,7 +31,7 @@ def hand_scenario(hand: str):
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--repeats", type=integer_option, default=3)
     repeats = parser.parse_args().repeats
     scenarios = {hand: hand_scenario(hand) for hand in HANDS}
     events = {hand: load_memorized_events(paths.package_events_dir() / folder, "box")

@@ -21,6 +21,7 @@ import tempfile
 
 import numpy as np
 
+from tegrasp_drake.rig.number_text import number_option
 from tegrasp_drake.emulators.myrio_emulator import save_tactile_recording
 from benchmarks.drivers import Percentiles, synthetic_trial
 
@@ -77,7 +78,7 @@ def run_hardware_benchmark(duration: float = 10.0, *, trial=None, overrides=(),
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--duration", type=float, default=10.0)
+    parser.add_argument("--duration", type=number_option, default=10.0)
     parser.add_argument("--trial", default=None, help="a TrialLog .npz to replay")
     parser.add_argument("--log", default=None, help="keep the run's LCM log here")
     parser.add_argument("--set", dest="overrides", action="append", default=[],

@@ -35,6 +35,7 @@ import time
 import numpy as np
 from pydrake.systems.analysis import Simulator
 
+from tegrasp_drake.rig.number_text import number_option
 from tegrasp_drake.control.scripted_grasp import gripper_command
 from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
@@ -145,7 +146,7 @@ def main(argv=None) -> int:
     parser.add_argument("--cells", nargs="+", type=parse_cell,
                         default=[parse_cell(c) for c in DEFAULT_CELLS],
                         help="STEP:REPRESENTATION:REFINEMENT, the first the CPU reference")
-    parser.add_argument("--rod-facet", type=float, default=0.002,
+    parser.add_argument("--rod-facet", type=number_option, default=0.002,
                         help="the rod's mesh resolution [m] (default 0.002)")
     parser.add_argument("--json", action="store_true", help="print the rows as JSON")
     args = parser.parse_args(argv)

@@ -30,6 +30,7 @@ from pydrake.systems.analysis import Simulator
 from pydrake.systems.framework import DiagramBuilder, LeafSystem
 from pydrake.systems.primitives import ConstantVectorSource, TrajectorySource
 
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import event_scores_reference
 from tegrasp_drake.events.event_matcher import EventMatcherConfig, add_event_matcher
@@ -216,8 +217,8 @@ def run_matcher_benchmark(*, repeats: int = 5, ticks: int = 2000) -> dict[str, f
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--repeats", type=int, default=7)
-    parser.add_argument("--ticks", type=int, default=2000)
+    parser.add_argument("--repeats", type=integer_option, default=7)
+    parser.add_argument("--ticks", type=integer_option, default=2000)
     args = parser.parse_args(argv)
     for name, value in run_matcher_benchmark(repeats=args.repeats, ticks=args.ticks).items():
         print(f"{name:28s} {value:8.1f} us")

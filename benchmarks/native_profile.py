@@ -31,6 +31,7 @@ import subprocess
 import sys
 import tempfile
 
+from tegrasp_drake.rig.integer_text import integer_option
 from benchmarks.arguments import benchmark_parser
 from tegrasp_drake.commands.scenario_args import scenario_from_arguments
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
@@ -194,7 +195,7 @@ def format_report(result: dict) -> str:
 def main(argv=None) -> int:
     parser = benchmark_parser(__doc__, "must be 1: one profiled trial a run",
                               default_repeats=1)
-    parser.add_argument("--rate", type=int, default=DEFAULT_RATE_HZ, metavar="HZ",
+    parser.add_argument("--rate", type=integer_option, default=DEFAULT_RATE_HZ, metavar="HZ",
                         help=f"py-spy's samples per second (default {DEFAULT_RATE_HZ})")
     args = parser.parse_args(argv)
     if args.repeats != 1:

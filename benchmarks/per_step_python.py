@@ -31,6 +31,7 @@ from pydrake.systems.framework import DiagramBuilder, LeafSystem
 from pydrake.systems.primitives import (ConstantVectorSource, LinearSystem,
                                         SymbolicVectorSystem, ZeroOrderHold)
 
+from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig import paths
 from tegrasp_drake.simulation.gripper_hands import gripper_hand
 from tegrasp_drake.simulation.linkage_pad_statics import LinkagePadStatics
@@ -177,7 +178,7 @@ def format_per_step_blocks(result: dict) -> str:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--repeats", type=int, default=5,
+    parser.add_argument("--repeats", type=integer_option, default=5,
                         help="runs of each variant, alternating")
     parser.add_argument("--json", action="store_true",
                         help="print the figures as one JSON object")

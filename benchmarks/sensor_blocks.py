@@ -22,6 +22,7 @@ from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.primitives import TrajectorySource
 from pydrake.trajectories import PiecewisePolynomial
 
+from tegrasp_drake.rig.integer_text import integer_option
 from benchmarks.system_costs import profile_trial
 from benchmarks.trial import time_trial
 from tegrasp_drake.scenario.scenario import LoadScenario, with_controller
@@ -119,8 +120,8 @@ def format_sensor_blocks(result: dict) -> str:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--scenario-name", default="box")
-    parser.add_argument("--seed", type=int, default=600)
-    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--seed", type=integer_option, default=600)
+    parser.add_argument("--repeats", type=integer_option, default=3)
     parser.add_argument("--no-profile", action="store_true")
     args = parser.parse_args(argv)
     if args.repeats < 1:

@@ -11,6 +11,7 @@ import importlib
 import signal
 import sys
 
+from tegrasp_drake import __version__
 from tegrasp_drake.commands import error_boundary, output_streams
 from tegrasp_drake.commands.command_line_parser import CommandLineParser
 from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
@@ -59,6 +60,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = CommandLineParser(
         prog="tegrasp",
         description="Tactile-event grasping with memorized triggers, on Drake.")
+    parser.add_argument("--version", action="version", version=f"tegrasp {__version__}",
+                        help="print the package's version and exit")
     subparsers = parser.add_subparsers(dest="command", required=True)
     for module_name in COMMAND_MODULES:
         importlib.import_module(module_name).register(subparsers)

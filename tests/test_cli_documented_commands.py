@@ -70,9 +70,12 @@ def unknown_names(command: str, parsers) -> list[str]:
     name = words[1] if len(words) > 1 else ""
     if name.isupper() or not re.fullmatch(r"[a-z-]+", name):
         return []  # a placeholder (`tegrasp COMMAND --help`)
-    if name not in parsers:
+    if name.startswith("--"):  # an option of `tegrasp` itself (`tegrasp --version`)
+        known = cli.build_parser()._option_string_actions
+    elif name not in parsers:
         return [name]
-    known = parsers[name]._option_string_actions
+    else:
+        known = parsers[name]._option_string_actions
     options = re.findall(r"(?<![\w-])(--[a-z][a-z-]*)", command)
     return [option for option in options if option not in known]
 
@@ -121,6 +124,7 @@ def test_every_documented_subcommand_and_option_exists():
 def test_the_checker_finds_a_stale_hint():
     # The hint this test was written for: `tegrasp demo` has no --log.
     assert unknown_names("tegrasp demo --log FILE", subcommand_parsers()) == ["--log"]
+    assert unknown_names("tegrasp --versions", subcommand_parsers()) == ["--versions"]
     with pytest.raises(AssertionError, match="does not parse"):
         parse("tegrasp demo --log out/run.npz")
 

@@ -99,19 +99,25 @@ FAULT_CODE = re.compile(r"\s*(0[xX][0-9a-fA-F]+|[0-9]+)\s*")
 
 
 def _fault_parts(text: str) -> tuple[int, float]:
-    """(CODE, SECONDS) of CODE@SECONDS, ValueError when `text` is not of that form."""
+    """(CODE, SECONDS) of CODE@SECONDS, SECONDS read as every number option reads its text
+    (rig.number_text.read_number); ValueError when `text` is not of that form."""
+    from tegrasp_drake.rig.number_text import read_number
     code, at = text.split("@")
     if not FAULT_CODE.fullmatch(code):
         raise ValueError(code)
-    return int(code, 0 if code.strip()[:2].lower() == "0x" else 10), float(at)
+    return int(code, 0 if code.strip()[:2].lower() == "0x" else 10), read_number(at)
 
 
 def fault_option(text: str) -> str:
     """--inject-fault's text, once it is of the form CODE@SECONDS (text of another form does
     not parse: exit 2); CODE and SECONDS are checked against their ranges by _parse_fault
     when the command runs (bad input, exit 1)."""
+    from tegrasp_drake.rig.number_text import NumberTextError, shown_text
     try:
         _fault_parts(text)
+    except NumberTextError as e:  # of the form, its SECONDS no number a float holds
+        raise argparse.ArgumentTypeError(
+            f"'{shorten(text)}': SECONDS {shown_text(text.split('@')[1])} {e}") from None
     except ValueError:
         raise argparse.ArgumentTypeError(
             f"'{shorten(text)}': expected CODE@SECONDS, CODE hexadecimal with 0x or decimal, "
@@ -129,7 +135,7 @@ def _parse_fault(text) -> FaultInjection:
                          f"from 0x1 to {GFLT_MAX:#x} (decimal 1 to {GFLT_MAX})")
     if not (math.isfinite(at) and FAULT_DELAY.contains(at)):
         raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': SECONDS "
-                         f"{FAULT_DELAY.words(at)}, got {shorten(repr(at))}")
+                         f"{FAULT_DELAY.words(at)}, got {shorten(text.split('@')[1])}")
     return FaultInjection(code, at)
 
 

@@ -18,7 +18,8 @@ from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_f
 from tegrasp_drake.rig.files import (free_space_problem, interruptions_deferred,
                                      output_file_problem)
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, shorten
-from tegrasp_drake.rig.number_text import count_text
+from tegrasp_drake.rig.number_text import (NumberTextError, TypedNumber, count_text,
+                                            read_number, shown_text, typed_text)
 from tegrasp_drake.rig.typed_yaml import config_set_option
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
@@ -78,12 +79,19 @@ MAX_DURATION_S = HARDWARE_RUN_DURATION.high
 
 
 def duration_seconds(text: str) -> float:
-    """--duration's number of seconds: text that is not a number does not parse (exit 2);
-    its range is checked by duration_problem when the command runs (bad input, exit 1)."""
+    """--duration's number of seconds (rig.number_text.number_option, the text kept for its
+    messages): text that is not a number does not parse (exit 2); its range is checked by
+    duration_problem when the command runs (bad input, exit 1)."""
     try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"'{shorten(text)}' is not a number of seconds") from None
+        return TypedNumber(read_number(text), text)
+    except NumberTextError as e:
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} {e}; give a number of "
+                                         "seconds") from None
+
+
+def _seconds(duration) -> float | None:
+    """--duration as a plain float (its typed text kept for the messages no further)."""
+    return None if duration is None else float(duration)
 
 
 def duration_problem(value: float) -> str | None:
@@ -92,9 +100,10 @@ def duration_problem(value: float) -> str | None:
     first command (the JACO2 driver's 100 Hz, hardware/jaco/jaco_lcm.py)."""
     from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_LCM_PERIOD
     if not HARDWARE_RUN_DURATION.contains(value):  # also refuses nan
-        return (f"--duration {value:g}: give a duration in (0, {MAX_DURATION_S:g}] seconds")
+        return (f"--duration {typed_text(value)}: give a duration in (0, {MAX_DURATION_S:g}] "
+                "seconds")
     if value < JACO_LCM_PERIOD:
-        return (f"--duration {value:g}: give at least {JACO_LCM_PERIOD:g} s, one period of the "
+        return (f"--duration {typed_text(value)}: give at least {JACO_LCM_PERIOD:g} s, one period of the "
                 "arm's commands (a shorter run ends before the arm is commanded)")
     return None
 
@@ -338,7 +347,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
             result = run_on_hardware(scenario, config=config, events=events,
                                      corrective_events=corrective,
                                      events_dir=_events_folder(events, args, scenario),
-                                     log_path=staged, duration=args.duration,
+                                     log_path=staged, duration=_seconds(args.duration),
                                      out=progress.write, progress=progress)
     except HardwareNotReadyError as e:
         staged.unlink(missing_ok=True)

@@ -82,6 +82,7 @@ class _ScriptParser(UsageParser):
                 problem = None if value is None else option_problem(option, value, allowed)
                 if problem:
                     raise SystemExit(f"{self._script}: error: {problem}")
+            setattr(parsed, destination, _plain_numbers(values))  # the typed text no further
         for destination, kind in self._outputs:
             path = getattr(parsed, destination)
             if path is None:
@@ -98,6 +99,15 @@ class _ScriptParser(UsageParser):
     def error(self, message):
         self.exit(EXIT_USAGE, f"{self._script}: error: {error_line(message)}; "
                               f"{self.prog} --help shows the usage\n")
+
+
+def _plain_numbers(values):
+    """An option's number (or list of them) without the text a TypedNumber holds for its
+    messages (rig.number_text.number_option): a plain float for the script's work."""
+    from tegrasp_drake.rig.number_text import TypedNumber
+    if isinstance(values, list):
+        return [_plain_numbers(value) for value in values]
+    return float(values) if isinstance(values, TypedNumber) else values
 
 
 def script_parser(script: str, doc: str) -> argparse.ArgumentParser:

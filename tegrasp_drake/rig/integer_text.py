@@ -20,6 +20,8 @@ _BASE_PREFIXES = {"0o": 8, "0x": 16}
 # YAML 1.2 core schema's integer forms (core_schema_yaml.py resolves plain scalars with it).
 CORE_INT = re.compile(r"^(?:[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+)$")
 _DECIMAL_INT = re.compile(r"^[-+]?[0-9]+$")
+# An integer option's text: as number_text.OPTION_NUMBER writes an integer (no spaces, no '+').
+_OPTION_INT = re.compile(r"-?[0-9]+")
 
 
 class IntegerTextError(ValueError):
@@ -69,10 +71,13 @@ def _beyond(digits: int) -> str:
 
 
 def integer_option(text: str) -> int:
-    """An argparse `type` for an integer option (decimal digits): read_integer, its error as
-    argparse's, the text cut to a few dozen characters."""
+    """An argparse `type` for an integer option (decimal digits, a '-' sign: as every number
+    option writes one, number_text.OPTION_NUMBER): read_integer, its error as argparse's, the
+    text cut to a few dozen characters."""
     import argparse
     try:
+        if not _OPTION_INT.fullmatch(text):
+            raise IntegerTextError("is not an integer")
         return read_integer(text, decimal_only=True)
     except IntegerTextError as e:
         shown = text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"

@@ -1,8 +1,12 @@
 """Numbers as a user reads them in a message: the one formatter of every number an error, a
 warning or a printed result shows, so that none prints 3.997943786001997 where the others print
-3.99794."""
+3.99794; and numbers as a user writes them on a command line: the one reader of every number
+option (number_option; integer options: integer_text.integer_option), its text kept for the
+option's messages."""
 
+import math
 import numbers
+import re
 
 
 def number_text(value) -> str:
@@ -22,3 +26,80 @@ def count_text(count: int, noun: str) -> str:
     """`count` things as a message says it: "1 object", "0 objects", "4 objects" (`noun`
     singular; English adds "s" for every count but one)."""
     return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
+# A number as the command line writes one: ASCII decimal digits, a '-' sign, a fraction, an
+# exponent (`2.5`, `-1`, `.5`, `5e-2`). Nothing else that Python's float() reads: no spaces
+# around it, no '+' sign, no `1_0`, no other script's digits (`١٢`, `１２`), no inf or nan.
+# re.ASCII: \d is 0-9 alone.
+OPTION_NUMBER = re.compile(r"-?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?", re.ASCII)
+_OPTION_INTEGER = re.compile(r"-?\d+", re.ASCII)
+
+
+class NumberTextError(ValueError):
+    """Text that is not a number as OPTION_NUMBER writes one, or one no float holds; the
+    message says why, following the text."""
+
+
+class TypedNumber(float):
+    """A number an option was given, holding the text the user typed (`typed`), which a
+    message echoes (typed_text): 600.0001 is not shown as 600, nor 1e-9 as 1e-09."""
+
+    def __new__(cls, value: float, typed: str):
+        number = super().__new__(cls, value)
+        number.typed = typed
+        return number
+
+    def __reduce__(self):
+        return TypedNumber, (float(self), self.typed)
+
+
+def read_number(text: str) -> float:
+    """The number `text` writes (OPTION_NUMBER) as a float; NumberTextError for other text,
+    and for a number beyond a float's range: an integer beyond it is named by its digits
+    (integer_text.read_integer), `1e400` and a nonzero number a float rounds to 0 (`1e-400`)
+    are refused rather than read as inf or 0."""
+    from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
+    if not isinstance(text, str) or not OPTION_NUMBER.fullmatch(text):
+        raise NumberTextError("is not a number (write decimal digits, e.g. 3 or 2.5)")
+    if _OPTION_INTEGER.fullmatch(text):
+        try:
+            return float(read_integer(text, decimal_only=True))
+        except IntegerTextError as e:
+            raise NumberTextError(str(e)) from None
+    mantissa = text.lower().split("e")[0]
+    if len(text) > 1000:  # float() of a long text is slow; no setting needs 1000 characters
+        raise NumberTextError(f"is {len(text)} characters long; write the number in fewer")
+    value = float(text)
+    if math.isinf(value) or (value == 0 and mantissa.strip("-.0")):
+        raise NumberTextError("is beyond the range of any setting (a float's, a magnitude "
+                              "from 5e-324 to 1.8e308, or 0)")
+    return value
+
+
+def shown_text(text: str, limit: int = 80) -> str:
+    """`text` an option was given, quoted and cut to about `limit` characters, saying how long
+    it was (the message of every number option the user typed)."""
+    from tegrasp_drake.rig.ranges import shorten
+    return repr(text) if len(text) <= limit else f"{shorten(text, limit)!r}"
+
+
+def number_option(text: str) -> TypedNumber:
+    """An argparse `type` for a number option: read_number, the text kept (TypedNumber) for
+    the option's range message; text that is not such a number does not parse (argparse's
+    error, the text cut to about 80 characters)."""
+    import argparse
+    try:
+        return TypedNumber(read_number(text), text)
+    except NumberTextError as e:
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} {e}") from None
+
+
+def typed_text(value) -> str:
+    """How a message echoes an option's number `value`: the text the user typed (a
+    TypedNumber's, cut to about 80 characters), else number_text."""
+    typed = getattr(value, "typed", None)
+    if isinstance(typed, str):
+        from tegrasp_drake.rig.ranges import shorten
+        return shorten(typed)
+    return number_text(value)

@@ -12,7 +12,7 @@ import types
 import typing
 
 from tegrasp_drake.rig.integer_text import integer_beyond_problem, integer_digits
-from tegrasp_drake.rig.number_text import number_text
+from tegrasp_drake.rig.number_text import number_text, typed_text
 
 _KEY = "tegrasp_range"
 _LENGTH_KEY = "tegrasp_length"
@@ -96,10 +96,11 @@ def option_problem(option: str, value, allowed: Range) -> str | None:
     """Why a command-line option's number `value` (one that parsed) is refused by its range
     `allowed`, in words naming the option (`--workers must be at least 1, got 0`); None if it
     lies in the range. A number that parses but lies outside its range is bad input (exit 1),
-    not a command line that does not parse (exit 2)."""
+    not a command line that does not parse (exit 2). The value is echoed as the user typed it
+    (number_text.typed_text: `600.0001`, not 600)."""
     if allowed.contains(value):
         return None
-    return f"{option} {allowed.words(value)}, got {value}"
+    return f"{option} {allowed.words(value)}, got {typed_text(value)}"
 
 
 def _number(value) -> str:

@@ -5,15 +5,27 @@ control character is refused naming its option, as a config's text field is."""
 
 import argparse
 import os
+import re
 
 EXIT_USAGE = 2  # a command line that does not parse (argparse's own code)
 EXIT_BAD_INPUT = 1  # a command line that parses, with a value that cannot be used
+
+# Text starting with '-' that is read as a value, not an option: argparse's negative numbers
+# (-1, -.5) and all other text that starts as a number does (-inf, -1@3, -1_0), so that
+# `--attempts -inf` is refused by the option's own check naming the value, never as "expected
+# one argument". An option the parser has (`--attempts --dry-run`, `-v`) is still an option.
+VALUE_LIKE_A_NUMBER = re.compile(r"^-(?:\d|\.|inf|nan)", re.IGNORECASE)
 
 
 class UsageParser(argparse.ArgumentParser):
     """argparse's parser, ending a command line that does not parse with one line on stderr,
     `PROG: error: <what> (see PROG --help)`, the user's text quoted safely
-    (files.error_line), and EXIT_USAGE."""
+    (files.error_line), and EXIT_USAGE. Text starting as a number does (VALUE_LIKE_A_NUMBER)
+    is an option's value."""
+
+    def __init__(self, *args, **keywords):
+        super().__init__(*args, **keywords)
+        self._negative_number_matcher = VALUE_LIKE_A_NUMBER
 
     def parse_known_args(self, args=None, namespace=None):
         """argparse's parse_known_args, a text value of this parser's arguments that holds

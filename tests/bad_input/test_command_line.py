@@ -404,6 +404,105 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     assert captured.err.startswith(words), captured.err
 
 
+# Rule: `tegrasp --version` prints the package's version on standard output and exits 0,
+# not "the following arguments are required: command".
+def test_version_prints_the_packages_version(capfd):
+    with pytest.raises(SystemExit) as exit_:
+        cli.main(["--version"])
+    captured = capfd.readouterr()
+    assert exit_.value.code in (0, None), captured
+    assert captured.out == f"tegrasp {tegrasp_drake.__version__}\n" and captured.err == ""
+
+
+# Rule: a value starting with '-' as a number does (-inf, -1@3) is the option's value, refused
+# by the option's own check naming it, never "expected one argument"; an option the command
+# has is still an option, so `--attempts --dry-run` lacks its argument.
+@pytest.mark.parametrize("argv, words", [
+    (["sweep", "--dry-run", "--attempts", "-inf"], "argument --attempts: '-inf' is not an"),
+    (["sweep", "--dry-run", "--base-seed", "-inf"], "argument --base-seed: '-inf' is not an"),
+    (["hardware", "--config", "/nonexistent/hw.yaml", "--duration", "-inf"],
+     "argument --duration: '-inf' is not a number"),
+    (["emulate", "robotiq", "--inject-fault", "-1@3"],
+     "argument --inject-fault: '-1@3': expected CODE@SECONDS"),
+    (["sweep", "--dry-run", "--attempts", "--dry-run"],
+     "argument --attempts: expected one argument"),
+    (["sweep", "--attempts", "-v"], "argument --attempts: expected one argument"),
+])
+def test_a_value_starting_with_a_minus_is_named_by_its_option(argv, words, tmp_path,
+                                                              monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(argv, capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, words)
+
+
+# Rule: every number option reads its text with the package's one reader (rig.number_text's
+# number_option, rig.integer_text's integer_option): decimal digits with a '-' sign, nothing
+# else that Python's float() or int() reads (`1_0`, another script's digits, spaces, '+'),
+# which is refused as a command line that does not parse, naming the option and the text.
+@pytest.mark.parametrize("argv", [["hardware", "--config", "/nonexistent/hw.yaml", "--duration"],
+                                  ["sweep", "--dry-run", "--attempts"],
+                                  ["sweep", "--dry-run", "--base-seed"],
+                                  ["sweep", "--dry-run", "--workers"]])
+@pytest.mark.parametrize("text", ["1_0", "\u0661\u0662", "\uff11\uff12", " 3", "+3"])
+def test_every_number_option_refuses_what_only_python_reads_as_a_number(argv, text, tmp_path,
+                                                                         monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    code, text_printed = run_cli([*argv, text], capfd)
+    assert code == 2, text_printed
+    assert_one_line_error(code, text_printed, f"argument {argv[-1]}: {text!r}")
+
+
+@pytest.mark.parametrize("seconds", ["1_0", "\u0661\u0662", " 3", "+3"])
+def test_a_fault_time_is_read_as_every_number_option_reads_one(seconds):
+    import argparse
+
+    from tegrasp_drake.commands.emulate import fault_option
+    with pytest.raises(argparse.ArgumentTypeError, match=f"SECONDS {re.escape(repr(seconds))}"):
+        fault_option(f"14@{seconds}")
+
+
+# Rule: a number option's text that no float holds (1e400, a 400-digit integer, a nonzero
+# 1e-400 a float rounds to 0) is refused by the reader naming the text as typed, never
+# echoed as the inf or 0 it would convert to, nor taken as one.
+@pytest.mark.parametrize("argv, words", [
+    (["hardware", "--duration", "1e400"], "argument --duration: '1e400' is beyond the range"),
+    (["hardware", "--duration", "1e-400"], "argument --duration: '1e-400' is beyond the range"),
+    (["hardware", "--duration", "9" * 400], "is an integer of 400 digits, beyond the range"),
+    (["sweep", "--dry-run", "--attempts", "9" * 400], "is an integer of 400 digits"),
+])
+def test_a_number_option_beyond_a_floats_range_is_named_as_typed(argv, words, tmp_path,
+                                                                  monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    if argv[0] == "hardware":
+        argv = [*argv, "--config", "/nonexistent/hw.yaml"]
+    code, text = run_cli(argv, capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, words)
+    assert "inf" not in text.replace("info", ""), text
+
+
+def test_a_fault_time_beyond_a_floats_range_is_named_as_typed():
+    import argparse
+
+    from tegrasp_drake.commands.emulate import fault_option
+    with pytest.raises(argparse.ArgumentTypeError, match="SECONDS '1e400' is beyond the range"):
+        fault_option("14@1e400")
+
+
+def test_no_number_option_bypasses_the_one_number_reader():
+    # argparse's type=float or type=int would take what Python reads (1_0, ١٢, ' 3').
+    root = pathlib.Path(tegrasp_drake.__file__).parent.parent
+    bypassing = []
+    for folder in ("tegrasp_drake", "analysis", "benchmarks"):
+        for path in sorted((root / folder).rglob("*.py")):
+            for node in ast.walk(ast.parse(path.read_text())):
+                if isinstance(node, ast.keyword) and node.arg == "type" and isinstance(
+                        node.value, ast.Name) and node.value.id in ("float", "int"):
+                    bypassing.append(f"{path.relative_to(root)}:{node.value.lineno}")
+    assert not bypassing, bypassing
+
+
 # Rule: an option's value that parses but lies outside its range is bad input, exit 1, in one
 # line naming the option and its range, whichever command takes it; only a value that does not
 # parse (not a number, not of the option's form) is a command line that does not parse, exit 2
@@ -413,13 +512,16 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     (["hardware", "--duration", "601"], "--duration 601: give a duration in (0, 600]"),
     (["hardware", "--duration", "-5"], "--duration -5: give a duration in (0, 600]"),
     (["hardware", "--duration", "0.001"], "--duration 0.001: give at least 0.01 s"),
-    (["hardware", "--duration", "1e-9"], "--duration 1e-09: give at least 0.01 s, one period"),
+    (["hardware", "--duration", "1e-9"], "--duration 1e-9: give at least 0.01 s, one period"),
+    (["hardware", "--duration", "600.0001"], "--duration 600.0001: give a duration in (0, 600]"),
     (["sweep", "--attempts", "0", "--dry-run"], "--attempts must be a positive integer, got 0"),
     (["sweep", "--base-seed", "-1", "--dry-run"], "--base-seed must lie in [0, 4294967295]"),
     (["sweep", "--workers", "0", "--dry-run"], "--workers must be at least 1, got 0"),
     (["sweep", "--confirm-trials", "0", "--dry-run"], "--confirm-trials 0: give the study's"),
     (["record-events", "--ensemble-runs", "-1"], "--ensemble-runs -1: give 0 (none) to 50"),
     (["emulate", "robotiq", "--inject-fault", "14@601"], "SECONDS must lie in [0, 600] s"),
+    (["emulate", "robotiq", "--inject-fault", "14@6.01e2"], "[0, 600] s (after the gripper's "
+     "activation, within a hardware run's ten minutes), got 6.01e2"),
     (["emulate", "robotiq", "--inject-fault", "0x10@3"], "gFLT holds 4 bits"),
 ])
 def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, words, tmp_path,
