@@ -10,7 +10,8 @@ user's environment does not surface as an internal error or as lines of another 
 - A private matplotlib configuration folder when matplotlib's own (under $XDG_CONFIG_HOME or
   ~/.config, and its cache under $XDG_CACHE_HOME or ~/.cache) cannot be written, e.g. HOME=/proc:
   matplotlib would make a temporary one itself but says so in two lines of warnings first.
-  The folder is removed when the process ends."""
+  An MPLCONFIGDIR that names no folder this user can write (a file) gets the same, with one
+  `tegrasp: warning:` line. The folder is removed when the process ends."""
 
 import atexit
 import codecs
@@ -64,18 +65,32 @@ def _home_folder(variable: str, fallback: str) -> pathlib.Path:
     return pathlib.Path(chosen) if chosen else pathlib.Path.home() / fallback
 
 
-def private_matplotlib_config() -> None:
-    """Points MPLCONFIGDIR at a temporary folder (removed at exit) when it is not set and
-    matplotlib's configuration or cache folder cannot be written (module docstring)."""
-    if os.environ.get("MPLCONFIGDIR"):
-        return
+def _matplotlib_folders_usable() -> bool:
+    """Whether matplotlib's own folders can be written: MPLCONFIGDIR when it is set (a
+    warning in the package's one-line form when it cannot), else its configuration and cache
+    folders under the home folder."""
+    chosen = os.environ.get("MPLCONFIGDIR")
+    if chosen:
+        if _writable_folder(pathlib.Path(chosen)):
+            return True
+        shown = repr(chosen[:80]) + (f"... ({len(chosen)} characters)" if len(chosen) > 80
+                                     else "")
+        print(f"tegrasp: warning: MPLCONFIGDIR={shown} is not a folder this user can write; "
+              "matplotlib's settings and cache go to a temporary folder", file=sys.stderr)
+        return False
     try:
-        usable = all(_writable_folder(_home_folder(variable, fallback) / "matplotlib")
-                     for variable, fallback in (("XDG_CONFIG_HOME", ".config"),
-                                                ("XDG_CACHE_HOME", ".cache")))
+        return all(_writable_folder(_home_folder(variable, fallback) / "matplotlib")
+                   for variable, fallback in (("XDG_CONFIG_HOME", ".config"),
+                                              ("XDG_CACHE_HOME", ".cache")))
     except RuntimeError:  # no home folder at all
-        usable = False
-    if usable:
+        return False
+
+
+def private_matplotlib_config() -> None:
+    """Points MPLCONFIGDIR at a temporary folder (removed at exit) when matplotlib's folders
+    cannot be written (module docstring): matplotlib would make one itself, with two lines
+    of its own warnings."""
+    if _matplotlib_folders_usable():
         return
     try:
         folder = tempfile.mkdtemp(prefix="tegrasp-matplotlib-")

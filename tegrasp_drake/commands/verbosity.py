@@ -10,6 +10,20 @@ DRAKE_LOGGER = "drake"  # where pydrake sends Drake's log
 LOG_FORMAT = "%(levelname)s %(name)s: %(message)s"
 
 
+class CommandLogFormatter(logging.Formatter):
+    """LOG_FORMAT, except that the package's warnings read as its other warnings do, one
+    line `tegrasp: warning: ...`: what the user is told, not a log record."""
+
+    def __init__(self):
+        super().__init__(LOG_FORMAT)
+
+    def format(self, record):
+        ours = record.name == PACKAGE_LOGGER or record.name.startswith(PACKAGE_LOGGER + ".")
+        if ours and record.levelno == logging.WARNING and not record.exc_info:
+            return f"tegrasp: warning: {record.getMessage()}"
+        return super().format(record)
+
+
 class StderrLogHandler(logging.StreamHandler):
     """Log records on the current stderr (the guarded one while a command runs,
     commands/output_streams.py). A record that stderr refuses (a full disk, an I/O error, a
@@ -59,7 +73,7 @@ def configure_logging(args) -> None:
     root = logging.getLogger()
     if not root.handlers:
         handler = StderrLogHandler()
-        handler.setFormatter(logging.Formatter(LOG_FORMAT))
+        handler.setFormatter(CommandLogFormatter())
         root.addHandler(handler)
         root.setLevel(logging.WARNING)
     level = log_level(getattr(args, "verbose", 0), getattr(args, "quiet", False))

@@ -2,6 +2,7 @@
 and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib's object API
 (no pyplot, no global backend state)."""
 
+import os
 import pathlib
 
 from tegrasp_drake.rig.files import UserPathError, temporary_sibling
@@ -51,8 +52,12 @@ def figure_replace_problem(path, *, overwrite: bool = True) -> str | None:
     """Why a figure may not be written at `path`, in words that follow it, or None: an existing
     file is replaced only when it is a figure of the format `path`'s suffix names (its first
     bytes are FIGURE_STARTS' for it: the user's notes saved as notes.png are not), and, unless
-    `overwrite`, not at all. Only the head is read."""
+    `overwrite`, not at all. A symbolic link, dangling or not, is the user's and never
+    replaced (a rename would put the figure in its place). Only the head is read."""
     path = check_figure_path(path)
+    if os.path.islink(path):
+        return ("is a symbolic link (a figure is written as a file, never over a link); give "
+                "another file name, or remove the link yourself")
     try:
         with open(path, "rb") as existing:
             head = existing.read(1024)

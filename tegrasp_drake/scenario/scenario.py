@@ -8,6 +8,7 @@ way. A bad file, field or value raises ConfigError.
 import dataclasses
 import math
 import pathlib
+import re
 import typing
 
 import numpy as np
@@ -23,7 +24,7 @@ from tegrasp_drake.control.controller_registry import (
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges,
+from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges, shorten,
                                       check_times_resolved, declare_ranges)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
@@ -522,8 +523,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
         require_mapping(document, path, "the scenario file",
                         "scenario names to scenarios (default: {object: {name: box}})")
     if not document or name not in document:
-        names = ", ".join(map(str, document)) if document else "none"
-        raise ConfigError(f"{path}: no scenario named '{name}' (scenarios: {names})")
+        raise ConfigError(f"{path}: {_no_scenario_named(name, document)}")
     data = document[name]
     if data is None:  # `x:` alone: an entry left empty, not the default scenario
         raise ConfigError(f"{path}: scenario '{name}' is empty (null): give its fields, or "
@@ -537,6 +537,22 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
         lambda source: _checked_scenario(data, source, controller=controller,
                                          allow_long=allow_long, on_ignored=on_ignored),
         f"{path} [{name}]", overrides)
+
+
+_SCENARIO_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_.-]*")
+
+
+def _no_scenario_named(name: str, document: dict | None) -> str:
+    """Why a scenario file's `document` has no scenario `name`: the names of its scenarios
+    (keys that look like a name and map to fields), cut as an echoed value is; keys that are
+    no scenario only counted, so that a file of another kind is never shown."""
+    names = [str(key) for key, value in (document or {}).items()
+             if isinstance(value, dict) and _SCENARIO_NAME.fullmatch(str(key))]
+    if names:
+        return f"no scenario named '{name}' (scenarios: {shorten(', '.join(names))})"
+    keys = len(document or {})
+    return (f"no scenario named '{name}', and no scenario at all ({keys} top-level key(s), "
+            "none a name mapped to scenario fields): give a scenario file")
 
 
 def _checked_scenario(data: dict, source: str, *, controller, allow_long, on_ignored):

@@ -217,6 +217,20 @@ def events_problem(events) -> str | None:
     return None
 
 
+def _fields_problem(record: dict, fields: set) -> str | None:
+    """Which of a record's `fields` it is missing and which keys it has that no record has
+    (names cut as echoed values are), or None when it has exactly `fields`."""
+    missing = sorted(fields - set(record))
+    extra = sorted(map(str, set(record) - fields))
+    said = []
+    if missing:
+        said.append(f"it is missing the field(s) {shorten(', '.join(missing))}")
+    if extra:
+        said.append(f"it has field(s) {shorten(', '.join(map(repr, extra)))} that no record "
+                    "has")
+    return "; ".join(said) or None
+
+
 def check_record(record, expected_file_name: str | None = None) -> str | None:
     """Why `record` is not a valid record, or None when it is."""
     if not isinstance(record, dict):
@@ -228,8 +242,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
         return (f"format_version {version!r} is not one of "
                 f"{', '.join(map(str, _RECORD_FIELDS))}")
     fields = _RECORD_FIELDS[version]
-    if set(record) != fields:
-        return f"fields {sorted(record)} are not the record fields {sorted(fields)}"
+    problem = _fields_problem(record, fields)
+    if problem is not None:
+        return problem
     if record["format"] != RECORD_FORMAT:
         return f"format {record['format']!r} is not {RECORD_FORMAT!r}"
     problem = events_problem(record.get("events"))

@@ -243,6 +243,22 @@ def test_a_relative_xdg_data_home_is_ignored(monkeypatch, tmp_path, caplog):
     assert "relative/dir" in caplog.text and "not an absolute path" in caplog.text
 
 
+# Rule: that warning reaches stderr as the package's other warnings do, in one line
+# `tegrasp: warning: ...`, not in the log's `WARNING tegrasp_drake.rig.paths: ...` form.
+def test_a_relative_xdg_data_home_is_warned_in_the_packages_form(monkeypatch, tmp_path,
+                                                                  caplog):
+    from tegrasp_drake.commands.verbosity import CommandLogFormatter
+    monkeypatch.delenv(paths.EVENTS_ENV, raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path / "home"))
+    monkeypatch.setenv("XDG_DATA_HOME", "relative/dir")
+    monkeypatch.setattr(paths, "_IGNORED_DATA_HOMES", set())  # warned once per process
+    paths.user_events_dir()
+    (record,) = [r for r in caplog.records if r.name == paths.__name__]
+    line = CommandLogFormatter().format(record)
+    assert line.startswith("tegrasp: warning: XDG_DATA_HOME='relative/dir'"), line
+    assert len(line.splitlines()) == 1, line
+
+
 # Rule: an events folder the user named that does not exist is refused whatever the
 # controllers (a typo would otherwise go unnoticed), a dry run's too, by --events or the
 # variable.

@@ -123,6 +123,20 @@ def test_an_unwritable_matplotlib_folder_adds_no_lines(tmp_path):
     assert "/proc" in done.stderr and "matplotlib" not in done.stderr.lower()
 
 
+# Rule: MPLCONFIGDIR naming what is no folder to write (a file) is said in the package's one
+# warning line and swapped for a temporary folder before matplotlib is imported, which would
+# otherwise warn in two lines of its own.
+def test_an_mplconfigdir_that_is_a_file_is_one_warning_line(tmp_path, monkeypatch, capsys):
+    from tegrasp_drake.commands.process_environment import private_matplotlib_config
+    a_file = tmp_path / "afile"
+    a_file.write_text("")
+    monkeypatch.setenv("MPLCONFIGDIR", str(a_file))
+    private_matplotlib_config()
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tegrasp: warning: MPLCONFIGDIR="), lines
+    assert str(a_file) in lines[0] and os.path.isdir(os.environ["MPLCONFIGDIR"])
+
+
 # Rule: a log record stderr refuses (-v on a full disk) is dropped, never Python logging's
 # traceback ("--- Logging error ---"); the command ends as a full stdout ends it: one line,
 # EXIT_ERROR. (The package logs only to stderr: there is no log-file option.)

@@ -85,6 +85,21 @@ def test_a_figure_that_cannot_be_written_is_one_line(tmp_path, capfd):
     assert code == cli.EXIT_ERROR and list(tmp_path.iterdir()) == []
 
 
+# Rule: a symbolic link at --out, dangling or not, is the user's: it is refused by name
+# (with --overwrite too, as trial's --out refuses one), never replaced by the figure.
+@pytest.mark.parametrize("overwrite", [[], ["--overwrite"]])
+@pytest.mark.parametrize("target", ["nowhere/dangling.png", "figure.png"])
+def test_a_figure_is_never_written_over_a_symbolic_link(tmp_path, capfd, target, overwrite):
+    from tegrasp_drake.figures.figure_files import new_figure, save_figure
+    save_figure(new_figure(1, 1), tmp_path / "figure.png")
+    link = tmp_path / "link.png"
+    link.symlink_to(tmp_path / target)
+    code, text = run_cli(["plot", "events", "--out", str(link), *overwrite], capfd)
+    assert_one_line_error(code, text, "--out", "symbolic link")
+    assert code == cli.EXIT_ERROR and link.is_symlink()
+    assert os.readlink(link) == str(tmp_path / target)
+
+
 def test_a_figure_on_a_full_disk_is_one_line_and_the_old_one_kept(tmp_path):
     import errno
     from tegrasp_drake.figures.figure_files import new_figure, save_figure

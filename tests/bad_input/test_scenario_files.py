@@ -117,6 +117,27 @@ def test_a_null_scenario_entry_is_refused_naming_it(tmp_path, capfd):
     assert len(errors) == 1 and "scenario 'x' is empty" in errors[0], text
 
 
+# Rule: a file that holds no scenario (a password file, another program's settings) is
+# refused without its keys shown, only counted; a scenario file with the name misspelt still
+# lists its scenarios.
+def test_a_file_of_no_scenarios_is_refused_without_listing_its_keys(tmp_path, capfd):
+    path = tmp_path / "s.yaml"
+    path.write_text("db_password: hunter2\napi_token: abc\n")
+    code, text = run_cli(["trial", "--scenario", str(path), "--out", str(tmp_path / "o")],
+                         capfd)
+    assert_one_line_error(code, text, "no scenario named 'default'", "2 top-level key(s)")
+    assert code == 1 and "db_password" not in text and "hunter2" not in text
+    assert not (tmp_path / "o").exists()
+
+
+def test_a_misspelt_scenario_name_lists_the_files_scenarios(tmp_path, capfd):
+    path = tmp_path / "s.yaml"
+    path.write_text("mine: {}\ntheirs: {object: {name: box}}\n")
+    code, text = run_cli(["trial", "--scenario", str(path), "--scenario-name", "mnie",
+                          "--out", str(tmp_path / "o")], capfd)
+    assert_one_line_error(code, text, "no scenario named 'mnie' (scenarios: mine, theirs)")
+
+
 # Rule: every configuration file the package reads is refused without a field (empty,
 # comments only, `{}`, null), as the sweep spec and the hardware config already were: the
 # sensitivity and transfer specs too, which otherwise started the whole study.

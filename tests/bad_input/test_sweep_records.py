@@ -487,3 +487,19 @@ def test_a_results_folder_whose_trials_is_a_file_says_so(tmp_path, capfd):
     (tmp_path / "trials").write_text("")
     code, text = run_cli(["plot", "latency", str(tmp_path)], capfd)
     assert_one_line_error(code, text, f"{tmp_path / 'trials'} is not a folder of trial records")
+
+
+# Rule: a record missing one of its fields (its checksum, say) is said to lack that field by
+# name, through `tegrasp plot table1` too, never called "not a JSON object".
+def test_a_sweep_record_without_its_checksum_names_the_missing_field(tmp_path, monkeypatch,
+                                                                      capfd):
+    summary = run_sweep(ONE_TRIAL, fake_trial, tmp_path / "sweep", workers=1, progress=False)
+    path = record_path(tmp_path / "sweep", summary.trial_ids[0])
+    record = json.loads(path.read_text())
+    del record["checksum"]
+    path.write_text(json.dumps(record))
+    assert "checksum" in load_records(tmp_path / "sweep").corrupt[path]
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(["plot", "table1", "sweep", "--out", "t.png"], capfd)
+    assert_one_line_error(code, text, path.name, "missing", "checksum")
+    assert "not a JSON object" not in text
