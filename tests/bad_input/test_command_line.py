@@ -417,6 +417,16 @@ def test_version_prints_the_packages_version(capfd):
 # Rule: a value starting with '-' as a number does (-inf, -1@3) is the option's value, refused
 # by the option's own check naming it, never "expected one argument"; an option the command
 # has is still an option, so `--attempts --dry-run` lacks its argument.
+def _refused_in(tmp_path, monkeypatch, capfd, argv, exit_code, *words):
+    """The output of `tegrasp argv` run in tmp_path, checked to be one line holding `words`
+    and `exit_code`."""
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(argv, capfd)
+    assert code == exit_code, text
+    assert_one_line_error(code, text, *words)
+    return text
+
+
 @pytest.mark.parametrize("argv, words", [
     (["sweep", "--dry-run", "--attempts", "-inf"], "argument --attempts: '-inf' is not an"),
     (["sweep", "--dry-run", "--base-seed", "-inf"], "argument --base-seed: '-inf' is not an"),
@@ -430,10 +440,7 @@ def test_version_prints_the_packages_version(capfd):
 ])
 def test_a_value_starting_with_a_minus_is_named_by_its_option(argv, words, tmp_path,
                                                               monkeypatch, capfd):
-    monkeypatch.chdir(tmp_path)
-    code, text = run_cli(argv, capfd)
-    assert code == 2, text
-    assert_one_line_error(code, text, words)
+    _refused_in(tmp_path, monkeypatch, capfd, argv, 2, words)
 
 
 # Rule: every number option reads its text with the package's one reader (rig.number_text's
@@ -549,10 +556,8 @@ def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, wo
 ])
 def test_a_control_character_in_an_option_is_refused_naming_it(argv, name, tmp_path,
                                                                 monkeypatch, capfd):
-    monkeypatch.chdir(tmp_path)
-    code, text = run_cli(argv, capfd)
-    assert code == 1, text
-    assert_one_line_error(code, text, name, "printable characters only; remove it")
+    text = _refused_in(tmp_path, monkeypatch, capfd, argv, 1, name,
+                       "printable characters only; remove it")
     assert "\x1b" not in text and "\x07" not in text  # echoed escaped, never raw
 
 
