@@ -20,8 +20,9 @@ _BASE_PREFIXES = {"0o": 8, "0x": 16}
 # YAML 1.2 core schema's integer forms (core_schema_yaml.py resolves plain scalars with it).
 CORE_INT = re.compile(r"^(?:[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+)$")
 _DECIMAL_INT = re.compile(r"^[-+]?[0-9]+$")
-# An integer option's text: as number_text.OPTION_NUMBER writes an integer (no spaces, no '+').
-_OPTION_INT = re.compile(r"-?[0-9]+")
+# An integer option's text: as number_text.OPTION_NUMBER writes an integer (no spaces, no '+');
+# number_option reads such text as an integer too.
+OPTION_INTEGER = re.compile(r"-?[0-9]+")
 
 
 class IntegerTextError(ValueError):
@@ -76,7 +77,7 @@ def integer_option(text: str) -> int:
     text cut to a few dozen characters."""
     import argparse
     try:
-        if not _OPTION_INT.fullmatch(text):
+        if not OPTION_INTEGER.fullmatch(text):
             raise IntegerTextError("is not an integer")
         return read_integer(text, decimal_only=True)
     except IntegerTextError as e:

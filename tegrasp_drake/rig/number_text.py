@@ -33,7 +33,6 @@ def count_text(count: int, noun: str) -> str:
 # around it, no '+' sign, no `1_0`, no other script's digits (`١٢`, `１２`), no inf or nan.
 # re.ASCII: \d is 0-9 alone.
 OPTION_NUMBER = re.compile(r"-?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?", re.ASCII)
-_OPTION_INTEGER = re.compile(r"-?\d+", re.ASCII)
 
 
 class NumberTextError(ValueError):
@@ -59,10 +58,10 @@ def read_number(text: str) -> float:
     and for a number beyond a float's range: an integer beyond it is named by its digits
     (integer_text.read_integer), `1e400` and a nonzero number a float rounds to 0 (`1e-400`)
     are refused rather than read as inf or 0."""
-    from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
+    from tegrasp_drake.rig.integer_text import OPTION_INTEGER, IntegerTextError, read_integer
     if not isinstance(text, str) or not OPTION_NUMBER.fullmatch(text):
         raise NumberTextError("is not a number (write decimal digits, e.g. 3 or 2.5)")
-    if _OPTION_INTEGER.fullmatch(text):
+    if OPTION_INTEGER.fullmatch(text):
         try:
             return float(read_integer(text, decimal_only=True))
         except IntegerTextError as e:
