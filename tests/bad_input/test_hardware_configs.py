@@ -42,10 +42,17 @@ def test_a_bad_hardware_config_is_named_before_any_device_is_opened(text, expect
     assert_one_line_error(code, output, str(config), expected)
 
 
-@pytest.mark.parametrize("duration", ["-5", "0", "nan", "1e7"])
+@pytest.mark.parametrize("duration", ["-5", "0", "1e7"])
 def test_a_hardware_duration_out_of_range_is_bad_input(duration, tmp_path, capfd):
     code, text = run_cli(["hardware", "--config", "hw.yaml", "--duration", duration], capfd)
     assert code == 1 and "--duration" in text and "Traceback" not in text
+
+
+@pytest.mark.parametrize("duration", ["nan", "inf"])
+def test_a_hardware_duration_that_is_no_number_is_a_usage_error(duration, tmp_path, capfd):
+    code, text = run_cli(["hardware", "--config", "hw.yaml", "--duration", duration], capfd)
+    assert code == 2 and "--duration" in text and "not a number" in text
+    assert "Traceback" not in text
 
 
 def test_a_trial_refuses_a_scenario_for_the_devices(tmp_path, capfd):
