@@ -21,7 +21,8 @@ from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Em
                                               FaultInjection)
 from tegrasp_drake.hardware.config import (DEFAULT_LCM_URL, lcm_url_origin,
                                            shared_lcm_url_problem)
-from tegrasp_drake.rig.ranges import FAULT_DELAY, shorten
+from tegrasp_drake.rig.ranges import FAULT_DELAY
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
 from tegrasp_drake.rig.files import output_file_problem
@@ -112,12 +113,12 @@ def fault_option(text: str) -> str:
     """--inject-fault's text, once it is of the form CODE@SECONDS (text of another form does
     not parse: exit 2); CODE and SECONDS are checked against their ranges by _parse_fault
     when the command runs (bad input, exit 1)."""
-    from tegrasp_drake.rig.number_text import NumberTextError, shown_text
+    from tegrasp_drake.rig.number_text import NumberTextError
     try:
         _fault_parts(text)
     except NumberTextError as e:  # of the form, its SECONDS no number a float holds
         raise argparse.ArgumentTypeError(
-            f"'{shorten(text)}': SECONDS {shown_text(text.split('@')[1])} {e}") from None
+            f"'{shorten(text)}': SECONDS {shown(text.split('@')[1])} {e}") from None
     except ValueError:
         raise argparse.ArgumentTypeError(
             f"'{shorten(text)}': expected CODE@SECONDS, CODE hexadecimal with 0x or decimal, "

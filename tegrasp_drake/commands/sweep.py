@@ -21,7 +21,7 @@ from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.files import folder_problem
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
     SchedulerLostError,

@@ -25,7 +25,8 @@ import yaml
 from tegrasp_drake.rig.core_schema_yaml import (compose, construct, yaml11_only_boolean,
                                                 yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
-from tegrasp_drake.rig.ranges import number_problem, python_scalar, shorten, shown
+from tegrasp_drake.rig.ranges import number_problem, python_scalar
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 

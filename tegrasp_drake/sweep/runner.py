@@ -46,7 +46,8 @@ from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, ch
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.files import FolderHeldError, UserPathError, held_folder
 from tegrasp_drake.rig.number_text import count_text
-from tegrasp_drake.rig.ranges import Range, shorten
+from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 
 logger = logging.getLogger(__name__)
