@@ -118,10 +118,10 @@ def fault_option(text: str) -> str:
         _fault_parts(text)
     except NumberTextError as e:  # of the form, its SECONDS no number a float holds
         raise argparse.ArgumentTypeError(
-            f"'{shorten(text)}': SECONDS {shown(text.split('@')[1])} {e}") from None
+            f"{shown(text)}: SECONDS {shown(text.split('@')[1])} {e}") from None
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"'{shorten(text)}': expected CODE@SECONDS, CODE hexadecimal with 0x or decimal, "
+            f"{shown(text)}: expected CODE@SECONDS, CODE hexadecimal with 0x or decimal, "
             "e.g. 0x0E@3.5 or 14@3.5") from None
     return text
 
@@ -131,11 +131,11 @@ def _parse_fault(text) -> FaultInjection:
     which is no fault: 0x1..0xF, or decimal 1..15), SECONDS in FAULT_DELAY."""
     code, at = _fault_parts(text)
     if not 0 < code <= GFLT_MAX:
-        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': the 2F-85's "
+        raise SystemExit(f"tegrasp: error: --inject-fault {shown(text)}: the 2F-85's "
                          f"fault register gFLT holds 4 bits, 0x0 being no fault; give a CODE "
                          f"from 0x1 to {GFLT_MAX:#x} (decimal 1 to {GFLT_MAX})")
     if not (math.isfinite(at) and FAULT_DELAY.contains(at)):
-        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': SECONDS "
+        raise SystemExit(f"tegrasp: error: --inject-fault {shown(text)}: SECONDS "
                          f"{FAULT_DELAY.words(at)}, got {shorten(text.split('@')[1])}")
     return FaultInjection(code, at)
 
@@ -203,7 +203,7 @@ def run(args) -> int:
         problem = shared_lcm_url_problem(args.lcm_url)  # the check `tegrasp hardware` makes
         if problem:
             raise SystemExit(f"tegrasp: error: {lcm_url_origin(args.lcm_url, '--lcm-url')} "
-                             f"{shorten(repr(args.lcm_url))} {problem}")
+                             f"{shown(args.lcm_url)} {problem}")
     # Every argument is checked above; only now is the whole process raised.
     logger.info(f"emulate: arguments checked; starting {', '.join(devices)} (LCM "
                 f"{args.lcm_url}, sync {sync})")

@@ -243,7 +243,7 @@ def run(args) -> int:
         where = args.config or "the scenario's station"
         origin = lcm_url_origin(config.arm.lcm_url, "field 'arm.lcm_url'")
         raise SystemExit(f"tegrasp: error: {shorten(where)}: {origin} {problem}, got "
-                         f"{shorten(repr(config.arm.lcm_url))}")
+                         f"{shown(config.arm.lcm_url)}")
     source = args.config or "the scenario's station"
     logger.info(f"hardware: devices checked ({source}): arm "
                 f"on {config.arm.lcm_url}, gripper on {config.gripper.port}, tactile on "

@@ -12,6 +12,7 @@ from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_
 from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
                                      output_file_problem, write_atomically)
 from tegrasp_drake.rig.usage_parser import UsageParser
+from tegrasp_drake.rig.echo import shown
 
 
 def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
@@ -182,7 +183,7 @@ def _run_guarded(main, script: str, argv=None) -> int:
         return _refused(script, f"{path}: {words}" if path else words)
     except UnicodeDecodeError as error:
         return _refused(script, f"a file is not UTF-8 text (byte {error.start}: "
-                                f"{error.object[error.start:error.start + 1]!r}); give a "
+                                f"{shown(error.object[error.start:error.start + 1])}); give a "
                                 "UTF-8 text file")
     except Exception as error:  # noqa: BLE001: the error boundary
         return internal_error(error, arguments, script)

@@ -21,7 +21,7 @@ from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.files import folder_problem
-from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
     SchedulerLostError,
@@ -227,7 +227,7 @@ def resolve_trial_function(text: str):
     module_name, _, attribute = text.partition(":")
     if not (all(part.isidentifier() for part in module_name.split("."))
             and attribute.isidentifier()):
-        raise SweepError(f"the trial function {text!r} is not MODULE:NAME (an absolute "
+        raise SweepError(f"the trial function {shown(text)} is not MODULE:NAME (an absolute "
                          "dotted module name, a colon, a name in it, e.g. mypkg.trials:run)")
     try:
         function = getattr(importlib.import_module(module_name), attribute)
@@ -325,9 +325,9 @@ def check_runner_arguments(args, command: str) -> None:
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:
-            raise OptionError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
+            raise OptionError(f"--scheduler {shown(args.scheduler)} {problem}")
     if not str(args.out).strip():
-        raise OptionError(f"--out {args.out!r} is empty; give a folder you can write")
+        raise OptionError(f"--out {shown(args.out)} is empty; give a folder you can write")
     problem = folder_problem(args.out)
     if problem:
         raise OptionError(f"--out {args.out}: {problem}; give a folder you can write")

@@ -26,3 +26,18 @@ def test_a_text_is_echoed_quoted_and_cut():
 def test_a_number_typed_is_echoed_as_typed():
     assert shown(number_option("600.0001")) == "600.0001"
     assert shown(number_option("1e-9")) == "1e-9"
+
+
+class _Unwritable:
+    def __repr__(self):
+        raise RuntimeError("no repr")
+
+
+@pytest.mark.parametrize("value, expected", [
+    (10 ** 5000, "<an integer of 5001 digits>"),
+    ([10 ** 5000], "<a list that cannot be written as text>"),
+    (_Unwritable(), "<a _Unwritable that cannot be written as text>"),
+    (b"\xff" * 200, repr(b"\xff" * 200)[:ECHO_CHARS] + "... (803 characters)"),
+], ids=["huge integer", "list of a huge integer", "repr raises", "bytes"])
+def test_an_echo_never_raises(value, expected):
+    assert shown(value) == expected
