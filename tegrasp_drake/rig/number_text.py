@@ -66,14 +66,24 @@ def read_number(text: str) -> float:
             return float(read_integer(text, decimal_only=True))
         except IntegerTextError as e:
             raise NumberTextError(str(e)) from None
-    mantissa = text.lower().split("e")[0]
     if len(text) > 1000:  # float() of a long text is slow; no setting needs 1000 characters
         raise NumberTextError(f"is {len(text)} characters long; write the number in fewer")
+    problem = float_beyond_problem(text)
+    if problem is not None:
+        raise NumberTextError(problem)
+    return float(text)
+
+
+def float_beyond_problem(text: str) -> str | None:
+    """Why no float holds the number the decimal `text` writes, in words that follow the text
+    or its field: float() would read one past a float's range as inf (`1e400`) and a nonzero
+    one below it as 0 (`1e-400`); None when a float holds it (the number options and the YAML
+    and `--set` readers refuse such text alike)."""
     value = float(text)
-    if math.isinf(value) or (value == 0 and mantissa.strip("-.0")):
-        raise NumberTextError("is beyond the range of any setting (a float's, a magnitude "
-                              "from 5e-324 to 1.8e308, or 0)")
-    return value
+    if math.isinf(value) or (value == 0 and text.lower().split("e")[0].strip("+-.0")):
+        return ("is beyond the range of any setting (a float's, a magnitude from 5e-324 to "
+                "1.8e308, or 0)")
+    return None
 
 
 def number_option(text: str) -> TypedNumber:
