@@ -493,7 +493,10 @@ def check_instance(config, source: str, where: str = "") -> None:
     """Walks a dataclass instance (built in Python, or changed after loading) against its
     type hints, as `check_fields` walks YAML data: ConfigTypeError names the first field
     whose value is not of its type, e.g. a dict, None or text where a config dataclass
-    belongs; the scalars inside by check_fields's own rules. Ranges: ranges.check_ranges."""
+    belongs; the scalars inside by check_fields's own rules. A NumPy number put into a list
+    field in place is stored as the Python number it holds, as a public dataclass stores one
+    assigned (api_boundary.python_numbers), so none reaches a JSON writer. Ranges:
+    ranges.check_ranges."""
     hints = _type_hints(type(config))
     for field in dataclasses.fields(config):
         path = f"{where}.{field.name}" if where else field.name
@@ -558,6 +561,8 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
             _refuse_type(value, _type_words(hint), path, source)
         arguments = [a for a in typing.get_args(hint) if a is not Ellipsis]
         for k, item in enumerate(value):
+            if isinstance(value, list) and python_scalar(item) is not item:
+                value[k] = item = python_scalar(item)  # put in place: kept as an assigned one
             if arguments:
                 element = arguments[k] if len(arguments) > 1 and k < len(arguments) else (
                     arguments[0])
