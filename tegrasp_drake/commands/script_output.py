@@ -44,6 +44,7 @@ class _ScriptParser(UsageParser):
         self._script = script
         self._outputs = []  # (destination, kind) of each add_output argument
         self._ranges = []  # (destination, option, allowed) of each add_number argument
+        self._workers_default = None  # add_workers's default, once it is added
 
     def add_output(self, *names, figure: bool = False, folder: bool = False, **keywords):
         """add_argument for a file the script writes (a report; a figure when `figure`), or
@@ -66,13 +67,18 @@ class _ScriptParser(UsageParser):
         return action
 
     def add_workers(self, default: int = 2):
-        """--workers N, the processes a script simulates in: at least 1, as `tegrasp sweep
-        --workers` (sweep.runner.WORKER_COUNT)."""
+        """--workers N, the processes a script simulates in, and --oversubscribe: at least 1
+        and at most the cores unless --oversubscribe, as `tegrasp sweep --workers`
+        (sweep.runner.WORKER_COUNT, cores_problem); by default `default`, at most the cores."""
         from tegrasp_drake.rig.integer_text import integer_option
         from tegrasp_drake.sweep.runner import WORKER_COUNT
-        return self.add_number("--workers", type=integer_option, default=default,
-                               metavar="N", allowed=WORKER_COUNT,
-                               help=f"processes to simulate in (default: {default})")
+        self._workers_default = default
+        self.add_argument("--oversubscribe", action="store_true",
+                          help="allow --workers above the number of cores")
+        return self.add_number("--workers", type=integer_option, metavar="N",
+                               allowed=WORKER_COUNT, help="processes to simulate in (default: "
+                               f"{default}, at most the cores; at most the cores unless "
+                               "--oversubscribe)")
 
     def parse_args(self, args=None, namespace=None):
         from tegrasp_drake.rig.ranges import option_problem
@@ -84,6 +90,8 @@ class _ScriptParser(UsageParser):
                 if problem:
                     raise SystemExit(f"{self._script}: error: {problem}")
             setattr(parsed, destination, _plain_numbers(values))  # the typed text no further
+        if self._workers_default is not None:
+            parsed.workers = self._workers_within_cores(parsed.workers, parsed.oversubscribe)
         for destination, kind in self._outputs:
             path = getattr(parsed, destination)
             if path is None:
@@ -93,6 +101,17 @@ class _ScriptParser(UsageParser):
             else:
                 refuse_unusable_output(self._script, path, figure=kind == "figure")
         return parsed
+
+    def _workers_within_cores(self, workers: int | None, oversubscribe: bool) -> int:
+        """--workers as given, refused above the cores (cores_problem); or its default, at
+        most the cores."""
+        from tegrasp_drake.sweep.runner import cores_problem, default_workers
+        if workers is None:
+            return min(self._workers_default, default_workers())
+        problem = cores_problem(workers, oversubscribe)
+        if problem:
+            raise SystemExit(f"{self._script}: error: --workers {workers}: {problem}")
+        return workers
 
     def refuse(self, message):
         raise SystemExit(f"{self._script}: error: {message}")

@@ -379,15 +379,13 @@ def check_workers(args) -> None:
     if args.workers is None:
         return
     from tegrasp_drake.rig.ranges import option_problem
-    from tegrasp_drake.sweep.runner import WORKER_COUNT, default_workers
+    from tegrasp_drake.sweep.runner import WORKER_COUNT, cores_problem
     problem = option_problem("--workers", args.workers, WORKER_COUNT)
     if problem:
         raise OptionError(problem)
-    cores = default_workers()
-    if args.workers > cores and not getattr(args, "oversubscribe", False):
-        raise OptionError(f"--workers {args.workers}: this machine gives this process {cores} "
-                         f"core(s); give at most {cores}, or add --oversubscribe to start "
-                         f"{args.workers} workers anyway")
+    problem = cores_problem(args.workers, getattr(args, "oversubscribe", False))
+    if problem:
+        raise OptionError(f"--workers {args.workers}: {problem}")
 
 
 def run(args) -> int:

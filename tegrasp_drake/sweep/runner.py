@@ -150,6 +150,18 @@ def default_workers() -> int:
     return len(os.sched_getaffinity(0))
 
 
+def cores_problem(workers: int, oversubscribe: bool) -> str | None:
+    """Why `workers` local worker processes are refused, in words that follow "--workers N:":
+    more than the cores this process may run on (default_workers), unless `oversubscribe`
+    (--oversubscribe) asks for them; None otherwise. `tegrasp sweep` and the analysis
+    scripts ask it alike."""
+    cores = default_workers()
+    if workers <= cores or oversubscribe:
+        return None
+    return (f"this machine gives this process {cores} core(s); give at most {cores}, or add "
+            f"--oversubscribe to start {workers} workers anyway")
+
+
 # Resident memory of one worker process running a trial [bytes]: sweep workers hold 250-300 MB
 # RSS, and one open-loop `tegrasp trial` process peaks at 333 MB (GNU time's maximum RSS).
 WORKER_MEMORY_BYTES = 330e6
