@@ -5,7 +5,8 @@ jaco: the JACO2 simulation on LCM; robotiq: the 2F-85 on a pseudo-terminal, the 
 object between its fingers; myrio: the tactile stream on a pseudo-terminal replaying
 `--trial NPZ`; all: the three in one process (--sync follow, --follow-gripper). Each prints
 where it listens, a line "devices: {JSON}" (emulators/emulator_process.py reads it) and
-"ready"; `--write-config FILE` writes the hardware config. They run until SIGINT or SIGTERM."""
+"ready"; `--write-config FILE` writes the hardware config. They run until SIGINT, SIGTERM or SIGHUP
+(STOP_SIGNALS), then print "stopped" and end with 128 + N, as every command a signal stops."""
 
 import argparse
 import logging
@@ -28,6 +29,9 @@ from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLIC
 from tegrasp_drake.rig.files import output_file_problem
 
 logger = logging.getLogger(__name__)
+
+# The signals that stop the devices, which then close before the command ends with 128 + N.
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 DEVICES = (*EMULATED_DEVICES, "all")
 GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
@@ -209,8 +213,14 @@ def run(args) -> int:
                 f"{args.lcm_url}, sync {sync})")
     out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     emulators = Emulators(lcm_url=args.lcm_url, out=out)
-    for signal_number in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signal_number, lambda *_: emulators.stop.set())
+    stopped_by = []  # the signals that stopped the devices, first first
+
+    def stop(signal_number, _frame):
+        stopped_by.append(signal.Signals(signal_number).name)
+        emulators.stop.set()
+
+    for signal_number in STOP_SIGNALS:
+        signal.signal(signal_number, stop)
     try:
         emulators.start(devices, scenario, trial=args.trial, sync=sync,
                         follow_gripper=follow_gripper and "myrio" in devices,
@@ -230,4 +240,6 @@ def run(args) -> int:
         emulators.close()
         logger.info("emulate: the devices stopped")
     out("stopped")
+    if stopped_by:  # the devices closed: now 128 + N, as every command a signal stops (cli.py)
+        raise KeyboardInterrupt(stopped_by[0])
     return 0
