@@ -413,9 +413,14 @@ def run(args) -> int:
                 _check_logs_folder(args.logs, args.out)
                 trial_function = bound_arguments(trial_function, log_dir=args.logs)
             if args.dry_run:  # refused as the real run would refuse it, before any trial
-                left, corrupt = (trial_count(spec), {}) if args.benchmark else \
+                left, corrupt, in_use = (trial_count(spec), {}, False) if args.benchmark else \
                     check_sweep_folder(spec, trial_function, args.out)
                 print(plan_text(spec, left=left, corrupt=corrupt, out=args.out))
+                if in_use:
+                    print(f"tegrasp: warning: --out {args.out} is in use: another run (a "
+                          "running sweep) is writing there now; the plan counts the records "
+                          "finished so far, and a real run is refused until it ends",
+                          file=sys.stderr)
                 return 0
             progress = not args.no_progress and progress_wanted(args)
             if args.benchmark:

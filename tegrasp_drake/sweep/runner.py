@@ -308,23 +308,29 @@ def _tell_earlier_temporary_files(out_dir) -> None:
 
 
 def check_sweep_folder(spec: SweepSpec, trial_function: Callable, out_dir
-                       ) -> tuple[int, dict[Path, str]]:
+                       ) -> tuple[int, dict[Path, str], bool]:
     """What run_sweep refuses in `out_dir` before it runs a trial (records made with other
     settings, or matched against other memorized events, for this spec's trial ids), checked
     without writing anything: `tegrasp sweep --dry-run` asks it, so a plan it prints is one
-    the real run does not refuse. ConfigError or SweepError, as run_sweep's; UserPathError
-    when another run is writing into the folder (hold_output_folder). Returns what the
+    the real run does not refuse. ConfigError or SweepError, as run_sweep's. Returns what the
     run would do there: the count of trials it would run (those without a finished record, as
-    run_sweep counts them) and the corrupt records it would set aside ({path: why})."""
+    run_sweep counts them), the corrupt records it would set aside ({path: why}), and whether
+    another run is writing into the folder now (it holds it: hold_output_folder), whose
+    records, each written whole, are read as they stand (a dry run writes nothing)."""
     trials = [trial.to_dict() for trial in expand_trials(spec)]
     if not Path(out_dir).is_dir():
-        return len(trials), {}  # a new folder: nothing recorded to disagree with
-    with hold_output_folder(Path(out_dir)):  # refused, as the run is, while another writes
+        return len(trials), {}, False  # a new folder: nothing recorded to disagree with
+    with ExitStack() as stack:
+        try:
+            stack.enter_context(held_folder(Path(out_dir), shared=True))
+            in_use = False
+        except FolderHeldError:
+            in_use = True
         loaded = load_records(out_dir)
         _check_records_fit(trials, trial_function, loaded.records, out_dir)
     pending = [trial for trial in trials
                if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
-    return len(pending), dict(loaded.corrupt)
+    return len(pending), dict(loaded.corrupt), in_use
 
 
 def _check_records_fit(trials, trial_function, records, out_dir) -> dict[str, dict | None]:
