@@ -12,7 +12,8 @@ from tegrasp_drake.sweep.summary import write_summary
 from tegrasp_drake.sweep.table import write_statistics, write_table1
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig.api_boundary import UPDATED_FOLDER, PathLike, public_api
-from tegrasp_drake.rig.ranges import Choice, shorten
+from tegrasp_drake.rig.ranges import Choice
+from tegrasp_drake.rig.echo import shorten
 
 
 @public_api

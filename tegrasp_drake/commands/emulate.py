@@ -5,7 +5,8 @@ jaco: the JACO2 simulation on LCM; robotiq: the 2F-85 on a pseudo-terminal, the 
 object between its fingers; myrio: the tactile stream on a pseudo-terminal replaying
 `--trial NPZ`; all: the three in one process (--sync follow, --follow-gripper). Each prints
 where it listens, a line "devices: {JSON}" (emulators/emulator_process.py reads it) and
-"ready"; `--write-config FILE` writes the hardware config. They run until SIGINT or SIGTERM."""
+"ready"; `--write-config FILE` writes the hardware config. They run until SIGINT, SIGTERM or SIGHUP
+(STOP_SIGNALS), then print "stopped" and end with 128 + N, as every command a signal stops."""
 
 import argparse
 import logging
@@ -21,12 +22,16 @@ from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Em
                                               FaultInjection)
 from tegrasp_drake.hardware.config import (DEFAULT_LCM_URL, lcm_url_origin,
                                            shared_lcm_url_problem)
-from tegrasp_drake.rig.ranges import FAULT_DELAY, shorten
+from tegrasp_drake.rig.ranges import FAULT_DELAY
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
 from tegrasp_drake.rig.files import output_file_problem
 
 logger = logging.getLogger(__name__)
+
+# The signals that stop the devices, which then close before the command ends with 128 + N.
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 DEVICES = (*EMULATED_DEVICES, "all")
 GFLT_MAX = 0xF  # the Robotiq status register's fault field is 4 bits
@@ -112,15 +117,15 @@ def fault_option(text: str) -> str:
     """--inject-fault's text, once it is of the form CODE@SECONDS (text of another form does
     not parse: exit 2); CODE and SECONDS are checked against their ranges by _parse_fault
     when the command runs (bad input, exit 1)."""
-    from tegrasp_drake.rig.number_text import NumberTextError, shown_text
+    from tegrasp_drake.rig.number_text import NumberTextError
     try:
         _fault_parts(text)
     except NumberTextError as e:  # of the form, its SECONDS no number a float holds
         raise argparse.ArgumentTypeError(
-            f"'{shorten(text)}': SECONDS {shown_text(text.split('@')[1])} {e}") from None
+            f"{shown(text)}: SECONDS {shown(text.split('@')[1])} {e}") from None
     except ValueError:
         raise argparse.ArgumentTypeError(
-            f"'{shorten(text)}': expected CODE@SECONDS, CODE hexadecimal with 0x or decimal, "
+            f"{shown(text)}: expected CODE@SECONDS, CODE hexadecimal with 0x or decimal, "
             "e.g. 0x0E@3.5 or 14@3.5") from None
     return text
 
@@ -130,11 +135,11 @@ def _parse_fault(text) -> FaultInjection:
     which is no fault: 0x1..0xF, or decimal 1..15), SECONDS in FAULT_DELAY."""
     code, at = _fault_parts(text)
     if not 0 < code <= GFLT_MAX:
-        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': the 2F-85's "
+        raise SystemExit(f"tegrasp: error: --inject-fault {shown(text)}: the 2F-85's "
                          f"fault register gFLT holds 4 bits, 0x0 being no fault; give a CODE "
                          f"from 0x1 to {GFLT_MAX:#x} (decimal 1 to {GFLT_MAX})")
     if not (math.isfinite(at) and FAULT_DELAY.contains(at)):
-        raise SystemExit(f"tegrasp: error: --inject-fault '{shorten(text)}': SECONDS "
+        raise SystemExit(f"tegrasp: error: --inject-fault {shown(text)}: SECONDS "
                          f"{FAULT_DELAY.words(at)}, got {shorten(text.split('@')[1])}")
     return FaultInjection(code, at)
 
@@ -202,14 +207,20 @@ def run(args) -> int:
         problem = shared_lcm_url_problem(args.lcm_url)  # the check `tegrasp hardware` makes
         if problem:
             raise SystemExit(f"tegrasp: error: {lcm_url_origin(args.lcm_url, '--lcm-url')} "
-                             f"{shorten(repr(args.lcm_url))} {problem}")
+                             f"{shown(args.lcm_url)} {problem}")
     # Every argument is checked above; only now is the whole process raised.
     logger.info(f"emulate: arguments checked; starting {', '.join(devices)} (LCM "
                 f"{args.lcm_url}, sync {sync})")
     out(f"scheduling: {raise_scheduling(args.scheduling, EMULATOR_PRIORITY)}")
     emulators = Emulators(lcm_url=args.lcm_url, out=out)
-    for signal_number in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(signal_number, lambda *_: emulators.stop.set())
+    stopped_by = []  # the signals that stopped the devices, first first
+
+    def stop(signal_number, _frame):
+        stopped_by.append(signal.Signals(signal_number).name)
+        emulators.stop.set()
+
+    for signal_number in STOP_SIGNALS:
+        signal.signal(signal_number, stop)
     try:
         emulators.start(devices, scenario, trial=args.trial, sync=sync,
                         follow_gripper=follow_gripper and "myrio" in devices,
@@ -229,4 +240,6 @@ def run(args) -> int:
         emulators.close()
         logger.info("emulate: the devices stopped")
     out("stopped")
+    if stopped_by:  # the devices closed: now 128 + N, as every command a signal stops (cli.py)
+        raise KeyboardInterrupt(stopped_by[0])
     return 0

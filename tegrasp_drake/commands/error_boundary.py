@@ -18,7 +18,7 @@ EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTW
 def path_too_long_line(error: OSError) -> str:
     """The one line for a path the file system refused as too long (ENAMETOOLONG): only a
     path the user gave, or one made from it, can be; names it (cut to about 80 characters)."""
-    from tegrasp_drake.rig.ranges import shorten
+    from tegrasp_drake.rig.echo import shorten
     path = error.filename if error.filename is not None else error.filename2
     what = "a path" if path is None else f"the path '{shorten(os.fsdecode(path))}'"
     return (f"{what} is too long for the file system (each name at most "

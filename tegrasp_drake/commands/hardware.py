@@ -17,9 +17,10 @@ from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_f
                                                write_result)
 from tegrasp_drake.rig.files import (free_space_problem, interruptions_deferred,
                                      output_file_problem)
-from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION, shorten
+from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import (NumberTextError, TypedNumber, count_text,
-                                            read_number, shown_text, typed_text)
+                                            read_number)
 from tegrasp_drake.rig.typed_yaml import config_set_option
 from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scenario_arguments,
                                                   controller_events, corrective_events,
@@ -85,7 +86,7 @@ def duration_seconds(text: str) -> float:
     try:
         return TypedNumber(read_number(text), text)
     except NumberTextError as e:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} {e}; give a number of "
+        raise argparse.ArgumentTypeError(f"{shown(text)} {e}; give a number of "
                                          "seconds") from None
 
 
@@ -100,10 +101,10 @@ def duration_problem(value: float) -> str | None:
     first command (the JACO2 driver's 100 Hz, hardware/jaco/jaco_lcm.py)."""
     from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_LCM_PERIOD
     if not HARDWARE_RUN_DURATION.contains(value):  # also refuses nan
-        return (f"--duration {typed_text(value)}: give a duration in (0, {MAX_DURATION_S:g}] "
+        return (f"--duration {shown(value)}: give a duration in (0, {MAX_DURATION_S:g}] "
                 "seconds")
     if value < JACO_LCM_PERIOD:
-        return (f"--duration {typed_text(value)}: give at least {JACO_LCM_PERIOD:g} s, one period of the "
+        return (f"--duration {shown(value)}: give at least {JACO_LCM_PERIOD:g} s, one period of the "
                 "arm's commands (a shorter run ends before the arm is commanded)")
     return None
 
@@ -242,7 +243,7 @@ def run(args) -> int:
         where = args.config or "the scenario's station"
         origin = lcm_url_origin(config.arm.lcm_url, "field 'arm.lcm_url'")
         raise SystemExit(f"tegrasp: error: {shorten(where)}: {origin} {problem}, got "
-                         f"{shorten(repr(config.arm.lcm_url))}")
+                         f"{shown(config.arm.lcm_url)}")
     source = args.config or "the scenario's station"
     logger.info(f"hardware: devices checked ({source}): arm "
                 f"on {config.arm.lcm_url}, gripper on {config.gripper.port}, tactile on "

@@ -19,6 +19,7 @@ from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS, figure_replace_problem
 from tegrasp_drake.rig.files import output_file_problem
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.echo import shown
 
 logger = logging.getLogger(__name__)
 
@@ -176,7 +177,7 @@ def run(args) -> int:
     if args.what == "events":
         if args.source is not None:
             raise SystemExit(f"tegrasp: error: `tegrasp plot events` takes no LOG or RESULTS "
-                             f"(got {args.source!r}); give the events folder as --events DIR")
+                             f"(got {shown(args.source)}); give the events folder as --events DIR")
         written = _plot_events(args, out)
     elif args.what in TRIAL_FIGURES:
         from tegrasp_drake.rig.typed_yaml import ConfigError

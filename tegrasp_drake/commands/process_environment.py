@@ -22,6 +22,7 @@ import pathlib
 import shutil
 import sys
 import tempfile
+from tegrasp_drake.rig.echo import shown
 
 
 def locale_is_utf8() -> bool:
@@ -73,10 +74,8 @@ def _matplotlib_folders_usable() -> bool:
     if chosen:
         if _writable_folder(pathlib.Path(chosen)):
             return True
-        shown = repr(chosen[:80]) + (f"... ({len(chosen)} characters)" if len(chosen) > 80
-                                     else "")
-        print(f"tegrasp: warning: MPLCONFIGDIR={shown} is not a folder this user can write; "
-              "matplotlib's settings and cache go to a temporary folder", file=sys.stderr)
+        print(f"tegrasp: warning: MPLCONFIGDIR={shown(chosen)} is not a folder this user can "
+              "write; matplotlib's settings and cache go to a temporary folder", file=sys.stderr)
         return False
     try:
         return all(_writable_folder(_home_folder(variable, fallback) / "matplotlib")
@@ -109,7 +108,6 @@ def check_matplotlib_backend() -> None:
     try:
         importlib.import_module("matplotlib")  # it reads MPLBACKEND as it is imported
     except ValueError:
-        shown = backend if len(backend) <= 40 else backend[:40] + "..."
-        raise SystemExit(f"tegrasp: error: MPLBACKEND={shown!r} is not a matplotlib backend; "
-                         "unset it (tegrasp draws its figures into files, with Agg) or give "
-                         "one, e.g. MPLBACKEND=agg") from None
+        raise SystemExit(f"tegrasp: error: MPLBACKEND={shown(backend)} is not a matplotlib "
+                         "backend; unset it (tegrasp draws its figures into files, with Agg) "
+                         "or give one, e.g. MPLBACKEND=agg") from None

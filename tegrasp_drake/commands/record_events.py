@@ -14,8 +14,9 @@ import pathlib
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.integer_text import integer_option
-from tegrasp_drake.rig.files import (absent_folders, folder_problem, interruptions_deferred,
-                                     made_folders_removed_if_empty)
+from tegrasp_drake.rig.files import (absent_folders, folder_problem, free_space_problem,
+                                     interruptions_deferred, made_folders_removed_if_empty)
+from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.rig.typed_yaml import set_option
 
@@ -202,10 +203,16 @@ def _record(out, to_record, runs: int, args) -> int:
     return 0
 
 
+# The most an object's memorized events take on disk [bytes], its index entries included: the
+# package's largest, the prismatic's, take 0.6 MB; an ensemble as much again.
+EVENTS_BYTES_PER_OBJECT = 1_000_000
+
+
 def _check_destination(out, named: str, object_names, runs: int) -> None:
     """Refuses, before anything is simulated, an events folder the new events could not be
-    saved into (events_folder.check_events_destination; the ensemble's folder too), naming
-    the option or environment setting that chose it (`named`)."""
+    saved into (events_folder.check_events_destination; the ensemble's folder too) or on a
+    disk too full to take them (rig.files.free_space_problem), naming the option or
+    environment setting that chose it (`named`)."""
     from tegrasp_drake.events.events_folder import (EventsDestinationError,
                                                     check_events_destination)
     from tegrasp_drake.recording.ensemble_events import ENSEMBLE_FOLDER
@@ -215,6 +222,13 @@ def _check_destination(out, named: str, object_names, runs: int) -> None:
             check_events_destination(folder, object_names)
     except EventsDestinationError as e:
         raise SystemExit(f"tegrasp: error: {named}: {e}; nothing was recorded") from None
+    ensemble = ", twice with an ensemble" if runs else ""
+    problem = free_space_problem(
+        out, EVENTS_BYTES_PER_OBJECT * len(object_names) * (2 if runs else 1),
+        f"the events of {count_text(len(object_names), 'object')} (at most "
+        f"{EVENTS_BYTES_PER_OBJECT / 1e6:g} MB an object{ensemble})")
+    if problem:
+        raise SystemExit(f"tegrasp: error: {named}: {problem}; nothing was recorded")
 
 
 def _builtin_scenario(object_name: str):

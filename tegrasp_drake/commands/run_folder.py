@@ -19,6 +19,7 @@ from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, absent_
                                      interruptions_deferred, made_folders_removed_if_empty,
                                      own_staging_suffix,
                                      remove_stale_staging_files_of, write_atomically)
+from tegrasp_drake.rig.echo import shown
 
 logger = logging.getLogger(__name__)
 
@@ -115,7 +116,7 @@ def claim_numbered_folder(default) -> pathlib.Path:
 def check_run_folder(folder) -> None:
     """RunFolderError unless `folder` is, or can be made as, a folder this user can write."""
     if not str(folder).strip():
-        raise RunFolderError(f"--out {str(folder)!r} is empty; give a folder you can write")
+        raise RunFolderError(f"--out {shown(str(folder))} is empty; give a folder you can write")
     problem = folder_problem(folder)
     if problem:
         raise RunFolderError(f"--out {folder}: {problem}; give a folder you can write")

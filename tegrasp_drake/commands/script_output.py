@@ -12,6 +12,7 @@ from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_
 from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
                                      output_file_problem, write_atomically)
 from tegrasp_drake.rig.usage_parser import UsageParser
+from tegrasp_drake.rig.echo import shown
 
 
 def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
@@ -43,6 +44,7 @@ class _ScriptParser(UsageParser):
         self._script = script
         self._outputs = []  # (destination, kind) of each add_output argument
         self._ranges = []  # (destination, option, allowed) of each add_number argument
+        self._workers_default = None  # add_workers's default, once it is added
 
     def add_output(self, *names, figure: bool = False, folder: bool = False, **keywords):
         """add_argument for a file the script writes (a report; a figure when `figure`), or
@@ -65,13 +67,18 @@ class _ScriptParser(UsageParser):
         return action
 
     def add_workers(self, default: int = 2):
-        """--workers N, the processes a script simulates in: at least 1, as `tegrasp sweep
-        --workers` (sweep.runner.WORKER_COUNT)."""
+        """--workers N, the processes a script simulates in, and --oversubscribe: at least 1
+        and at most the cores unless --oversubscribe, as `tegrasp sweep --workers`
+        (sweep.runner.WORKER_COUNT, cores_problem); by default `default`, at most the cores."""
         from tegrasp_drake.rig.integer_text import integer_option
         from tegrasp_drake.sweep.runner import WORKER_COUNT
-        return self.add_number("--workers", type=integer_option, default=default,
-                               metavar="N", allowed=WORKER_COUNT,
-                               help=f"processes to simulate in (default: {default})")
+        self._workers_default = default
+        self.add_argument("--oversubscribe", action="store_true",
+                          help="allow --workers above the number of cores")
+        return self.add_number("--workers", type=integer_option, metavar="N",
+                               allowed=WORKER_COUNT, help="processes to simulate in (default: "
+                               f"{default}, at most the cores; at most the cores unless "
+                               "--oversubscribe)")
 
     def parse_args(self, args=None, namespace=None):
         from tegrasp_drake.rig.ranges import option_problem
@@ -83,6 +90,8 @@ class _ScriptParser(UsageParser):
                 if problem:
                     raise SystemExit(f"{self._script}: error: {problem}")
             setattr(parsed, destination, _plain_numbers(values))  # the typed text no further
+        if self._workers_default is not None:
+            parsed.workers = self._workers_within_cores(parsed.workers, parsed.oversubscribe)
         for destination, kind in self._outputs:
             path = getattr(parsed, destination)
             if path is None:
@@ -92,6 +101,17 @@ class _ScriptParser(UsageParser):
             else:
                 refuse_unusable_output(self._script, path, figure=kind == "figure")
         return parsed
+
+    def _workers_within_cores(self, workers: int | None, oversubscribe: bool) -> int:
+        """--workers as given, refused above the cores (cores_problem); or its default, at
+        most the cores."""
+        from tegrasp_drake.sweep.runner import cores_problem, default_workers
+        if workers is None:
+            return min(self._workers_default, default_workers())
+        problem = cores_problem(workers, oversubscribe)
+        if problem:
+            raise SystemExit(f"{self._script}: error: --workers {workers}: {problem}")
+        return workers
 
     def refuse(self, message):
         raise SystemExit(f"{self._script}: error: {message}")
@@ -182,7 +202,7 @@ def _run_guarded(main, script: str, argv=None) -> int:
         return _refused(script, f"{path}: {words}" if path else words)
     except UnicodeDecodeError as error:
         return _refused(script, f"a file is not UTF-8 text (byte {error.start}: "
-                                f"{error.object[error.start:error.start + 1]!r}); give a "
+                                f"{shown(error.object[error.start:error.start + 1])}); give a "
                                 "UTF-8 text file")
     except Exception as error:  # noqa: BLE001: the error boundary
         return internal_error(error, arguments, script)

@@ -21,7 +21,7 @@ from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.files import folder_problem
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
     SchedulerLostError,
@@ -227,7 +227,7 @@ def resolve_trial_function(text: str):
     module_name, _, attribute = text.partition(":")
     if not (all(part.isidentifier() for part in module_name.split("."))
             and attribute.isidentifier()):
-        raise SweepError(f"the trial function {text!r} is not MODULE:NAME (an absolute "
+        raise SweepError(f"the trial function {shown(text)} is not MODULE:NAME (an absolute "
                          "dotted module name, a colon, a name in it, e.g. mypkg.trials:run)")
     try:
         function = getattr(importlib.import_module(module_name), attribute)
@@ -325,9 +325,9 @@ def check_runner_arguments(args, command: str) -> None:
     if args.scheduler is not None:
         problem = scheduler_problem(args.scheduler)
         if problem:
-            raise OptionError(f"--scheduler {shorten(repr(args.scheduler))} {problem}")
+            raise OptionError(f"--scheduler {shown(args.scheduler)} {problem}")
     if not str(args.out).strip():
-        raise OptionError(f"--out {args.out!r} is empty; give a folder you can write")
+        raise OptionError(f"--out {shown(args.out)} is empty; give a folder you can write")
     problem = folder_problem(args.out)
     if problem:
         raise OptionError(f"--out {args.out}: {problem}; give a folder you can write")
@@ -379,15 +379,13 @@ def check_workers(args) -> None:
     if args.workers is None:
         return
     from tegrasp_drake.rig.ranges import option_problem
-    from tegrasp_drake.sweep.runner import WORKER_COUNT, default_workers
+    from tegrasp_drake.sweep.runner import WORKER_COUNT, cores_problem
     problem = option_problem("--workers", args.workers, WORKER_COUNT)
     if problem:
         raise OptionError(problem)
-    cores = default_workers()
-    if args.workers > cores and not getattr(args, "oversubscribe", False):
-        raise OptionError(f"--workers {args.workers}: this machine gives this process {cores} "
-                         f"core(s); give at most {cores}, or add --oversubscribe to start "
-                         f"{args.workers} workers anyway")
+    problem = cores_problem(args.workers, getattr(args, "oversubscribe", False))
+    if problem:
+        raise OptionError(f"--workers {args.workers}: {problem}")
 
 
 def run(args) -> int:
@@ -415,9 +413,14 @@ def run(args) -> int:
                 _check_logs_folder(args.logs, args.out)
                 trial_function = bound_arguments(trial_function, log_dir=args.logs)
             if args.dry_run:  # refused as the real run would refuse it, before any trial
-                left, corrupt = (trial_count(spec), {}) if args.benchmark else \
+                left, corrupt, in_use = (trial_count(spec), {}, False) if args.benchmark else \
                     check_sweep_folder(spec, trial_function, args.out)
                 print(plan_text(spec, left=left, corrupt=corrupt, out=args.out))
+                if in_use:
+                    print(f"tegrasp: warning: --out {args.out} is in use: another run (a "
+                          "running sweep) is writing there now; the plan counts the records "
+                          "finished so far, and a real run is refused until it ends",
+                          file=sys.stderr)
                 return 0
             progress = not args.no_progress and progress_wanted(args)
             if args.benchmark:

@@ -148,7 +148,7 @@ def controller_entry(controller: typing.Any,
     else:
         entry = _ENTRY_OF_CLASS.get(type(controller))
     if entry is None:
-        from tegrasp_drake.rig.ranges import shorten
+        from tegrasp_drake.rig.echo import shorten
         shown = (repr(controller) if isinstance(controller, str) else
                  f"{type(controller).__name__} {shorten(repr(controller))}")
         raise UnknownControllerError(

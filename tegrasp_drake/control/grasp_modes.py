@@ -5,7 +5,8 @@ import dataclasses
 import enum
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
-from tegrasp_drake.rig.ranges import bounded, check_ranges, shorten
+from tegrasp_drake.rig.ranges import bounded, check_ranges
+from tegrasp_drake.rig.echo import shorten
 
 
 class Mode(enum.IntEnum):

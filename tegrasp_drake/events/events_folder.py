@@ -13,7 +13,7 @@ from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, held_fo
                                      interruptions_deferred, replace_problem,
                                      remove_stale_staging_files_of, staged_file)
 from tegrasp_drake.rig.objects import object_name_problem
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.events.event_file import (
     FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
     remake_advice, event_json_text, event_summary, event_to_json, has_index, read_index,

@@ -25,10 +25,11 @@ from tegrasp_drake.hardware.myrio.tactile_frame import FRAME_PERIOD_US
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
-from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, load_typed,
+from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance, load_typed,
                                           loaded_with_overrides, read_yaml_file,
                                           require_fields, require_mapping)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
+from tegrasp_drake.rig.echo import shown
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
 LCM_URL_VARIABLE = "LCM_DEFAULT_URL"
@@ -297,9 +298,10 @@ def watchdog_timeouts_problem(config: HardwareStationConfig, prefix: str = "") -
 
 def validate_hardware_config(config: HardwareStationConfig, source: str,
                              where: str = "") -> HardwareStationConfig:
-    """Checks what the schema cannot (ranges and choices, LCM URL, calibration); ConfigError
-    names the field."""
+    """Checks each field's type (a config built in Python met no schema), then what the schema
+    cannot (ranges and choices, LCM URL, calibration); ConfigError names the field."""
     prefix = f"{where}." if where else ""
+    check_instance(config, source, where)
     check_ranges(config, source, where)
     problem = continuous_joints_problem(config.arm.tracker.continuous_joints)
     if problem:
@@ -308,7 +310,7 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     problem = lcm_url_problem(config.arm.lcm_url)
     if problem:
         origin = lcm_url_origin(config.arm.lcm_url, f"field '{prefix}arm.lcm_url'")
-        raise ConfigError(f"{source}: {origin} {problem}, got {config.arm.lcm_url!r}")
+        raise ConfigError(f"{source}: {origin} {problem}, got {shown(config.arm.lcm_url)}")
     problem = watchdog_timeouts_problem(config, prefix)
     if problem:
         raise ConfigError(f"{source}: {problem}")
@@ -321,9 +323,10 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
                 "serial port (e.g. /dev/ttyUSB0, or the /dev/pts/N `tegrasp emulate` prints)")
     if same_serial_line(tactile, gripper):
         raise ConfigError(
-            f"{source}: fields '{prefix}tactile.port' ({tactile!r}) and '{prefix}gripper.port' "
-            f"({gripper!r}) are one serial line; each device needs its own (the myRIO's "
-            "reader would take the gripper's answers): set one of them to its device's port")
+            f"{source}: fields '{prefix}tactile.port' ({shown(tactile)}) and "
+            f"'{prefix}gripper.port' ({shown(gripper)}) are one serial line; each device needs "
+            "its own (the myRIO's reader would take the gripper's answers): set one of them to "
+            "its device's port")
     if config.tactile.calibration_file:  # read now, not when the devices start
         from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
         try:

@@ -5,6 +5,7 @@ loop on a busy host"."""
 
 import contextlib
 import os
+from tegrasp_drake.rig.echo import shown
 
 SCHEDULING_POLICIES = ("fifo", "nice", "normal")
 NICE_LEVEL = -10  # about 10x a normal process's CPU share (CFS weights)
@@ -20,7 +21,7 @@ def raise_scheduling(policy: str = "fifo", priority: int = 10, pid: int = 0) -> 
     """Raises the scheduling of the calling thread, or of process `pid` (its main thread, before
     it starts threads); returns what it got, in words."""
     if policy not in SCHEDULING_POLICIES:
-        raise ValueError(f"scheduling policy {policy!r} is not one of "
+        raise ValueError(f"scheduling policy {shown(policy)} is not one of "
                          f"{', '.join(SCHEDULING_POLICIES)}")
     got, refused = "normal scheduling", []
     if policy == "fifo":

@@ -34,6 +34,7 @@ from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin
                                            lcm_url_problem)
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.echo import shown
 
 logger = logging.getLogger(__name__)
 
@@ -109,7 +110,7 @@ class HardwareStation(Diagram):
         problem = None if lcm is not None else lcm_url_problem(config.arm.lcm_url)
         if problem:
             origin = lcm_url_origin(config.arm.lcm_url, "the LCM URL")
-            raise HardwareNotReadyError(f"arm: {origin} {config.arm.lcm_url!r} {problem}")
+            raise HardwareNotReadyError(f"arm: {origin} {shown(config.arm.lcm_url)} {problem}")
         self._lcm = lcm or DrakeLcm(config.arm.lcm_url)
         self._gripper_client = None
         self._tactile_reader = None

@@ -16,6 +16,7 @@
   core_schema_yaml.py       YAML text to data, numbers read as YAML 1.2's core schema
   integer_text.py           the one bounded reader of integers from text
   number_text.py            the one writer of numbers in messages (rounded alike)
+  echo.py                   the one echo of values a user gave, in messages (cut, never raising)
   ranges.py                 each numeric setting's unit and range
   unset_fields.py           fields whose empty value means "not set"
   api_boundary.py           argument checks at the public API; dataclasses take fields only

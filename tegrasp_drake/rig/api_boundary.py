@@ -19,6 +19,7 @@ import threading
 import types
 import typing
 
+from tegrasp_drake.rig.echo import shown
 from tegrasp_drake.rig.ranges import check_ranges, number_problem, python_scalar
 
 # A file or folder argument: text or a path object (pathlib.Path, os.DirEntry).
@@ -160,7 +161,7 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
             if not _matches(item, hint):
                 raise TypeError(f"{name}: argument '{argument}' must be "
                                 f"{_describe_hint(hint)}, got {type(item).__name__} "
-                                f"{_short_repr(item)}")
+                                f"{shown(item)}")
     for argument, value in bound.arguments.items():  # a config's fields, changed since?
         if _mutable_dataclass(value):
             from tegrasp_drake.rig.typed_yaml import check_instance
@@ -233,10 +234,10 @@ def _check_constraint(function: str, name: str, value, constraint) -> None:
             raise UserPathError(f"{where}: {os.fspath(value)!r} {problem}")
     elif isinstance(constraint, TextPattern):
         if not isinstance(value, str) or not constraint.pattern.match(value):
-            raise ValueError(f"{where} {constraint.words}, got {_short_repr(value)}")
+            raise ValueError(f"{where} {constraint.words}, got {shown(value)}")
     elif isinstance(constraint, Choice):
         if value not in constraint.names:
-            raise ValueError(f"{where} {constraint.words()}, got {_short_repr(value)}")
+            raise ValueError(f"{where} {constraint.words()}, got {shown(value)}")
     else:  # a Range: of the number, or of each number of a sequence
         items = value if isinstance(value, (list, tuple)) else (value,)
         for k, item in enumerate(items):
@@ -321,12 +322,6 @@ def _describe_hint(hint) -> str:
     return re.sub(r"\b(?:[a-z_]\w*\.)+([A-Za-z_]\w*)", r"\1", str(hint))
 
 
-def _short_repr(value) -> str:
-    from tegrasp_drake.rig.ranges import shown
-    text = shown(value, limit=10**9)
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
 def public_dataclass(cls):
     """Class decorator (above @dataclass): the constructor refuses a value not of its field's
     type where that is str, int, float or bool (or optional: `hold_success='yes'`), and a
@@ -389,7 +384,7 @@ def check_field_types(instance) -> None:
         if isinstance(value, _TEXT):
             raise TypeError(f"{cls.__name__}: field '{name}' must be a collection "
                             f"(not a single string), got {type(value).__name__} "
-                            f"{_short_repr(value)}; e.g. {name}=[{_short_repr(value)}]")
+                            f"{shown(value)}; e.g. {name}=[{shown(value)}]")
         if hasattr(value, "__array__") and not isinstance(value, (list, tuple)):
             from tegrasp_drake.rig.typed_yaml import array_for_list_words
             raise TypeError(f"{cls.__name__}: field '{name}' "
@@ -490,7 +485,7 @@ def _check_scalar_fields(instance, scalar: dict, source: str) -> None:
         value = getattr(instance, name)
         if not _matches(python_scalar(value), hint):
             raise TypeError(f"{source}: field '{name}' must be {_describe_hint(hint)}, "
-                            f"got {type(value).__name__} {_short_repr(value)}")
+                            f"got {type(value).__name__} {shown(value)}")
 
 
 def _expects_collection(hint) -> bool:

@@ -671,18 +671,17 @@ def one_line(text: str) -> str:
 
 
 # A value pasted by mistake must not make an error hundreds of kB long: an error line is at
-# most MAX_ERROR_CHARS, its words longer than twice ECHO_CHARS cut to about ECHO_CHARS.
-ECHO_CHARS = 80
+# most MAX_ERROR_CHARS, its words longer than twice echo.ECHO_CHARS cut to about ECHO_CHARS.
 MAX_ERROR_CHARS = 1000
 
 
 def error_line(text: str) -> str:
     """`text` as an error's one line (one_line), bounded: every error the user reads."""
-    from tegrasp_drake.rig.ranges import shorten
+    from tegrasp_drake.rig.echo import ECHO_CHARS, shorten
     message = one_line(text)
     if len(message) <= MAX_ERROR_CHARS:
         return message
-    message = " ".join(shorten(word, ECHO_CHARS) if len(word) > 2 * ECHO_CHARS else word
+    message = " ".join(shorten(word) if len(word) > 2 * ECHO_CHARS else word
                        for word in message.split(" "))
     if len(message) <= MAX_ERROR_CHARS:
         return message

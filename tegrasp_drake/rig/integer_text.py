@@ -74,12 +74,12 @@ def _beyond(digits: int) -> str:
 def integer_option(text: str) -> int:
     """An argparse `type` for an integer option (decimal digits, a '-' sign: as every number
     option writes one, number_text.OPTION_NUMBER): read_integer, its error as argparse's, the
-    text cut to a few dozen characters."""
+    text echoed by echo.shown."""
     import argparse
     try:
         if not OPTION_INTEGER.fullmatch(text):
             raise IntegerTextError("is not an integer")
         return read_integer(text, decimal_only=True)
     except IntegerTextError as e:
-        shown = text if len(text) <= 40 else f"{text[:20]}...({len(text)} characters)"
-        raise argparse.ArgumentTypeError(f"{shown!r} {e}") from None
+        from tegrasp_drake.rig.echo import shown
+        raise argparse.ArgumentTypeError(f"{shown(text)} {e}") from None

@@ -42,7 +42,7 @@ class NumberTextError(ValueError):
 
 class TypedNumber(float):
     """A number an option was given, holding the text the user typed (`typed`), which a
-    message echoes (typed_text): 600.0001 is not shown as 600, nor 1e-9 as 1e-09."""
+    message echoes (echo.shown): 600.0001 is not shown as 600, nor 1e-9 as 1e-09."""
 
     def __new__(cls, value: float, typed: str):
         number = super().__new__(cls, value)
@@ -66,39 +66,34 @@ def read_number(text: str) -> float:
             return float(read_integer(text, decimal_only=True))
         except IntegerTextError as e:
             raise NumberTextError(str(e)) from None
-    mantissa = text.lower().split("e")[0]
     if len(text) > 1000:  # float() of a long text is slow; no setting needs 1000 characters
         raise NumberTextError(f"is {len(text)} characters long; write the number in fewer")
+    problem = float_beyond_problem(text)
+    if problem is not None:
+        raise NumberTextError(problem)
+    return float(text)
+
+
+def float_beyond_problem(text: str) -> str | None:
+    """Why no float holds the number the decimal `text` writes, in words that follow the text
+    or its field: float() would read one past a float's range as inf (`1e400`) and a nonzero
+    one below it as 0 (`1e-400`); None when a float holds it (the number options and the YAML
+    and `--set` readers refuse such text alike)."""
     value = float(text)
-    if math.isinf(value) or (value == 0 and mantissa.strip("-.0")):
-        raise NumberTextError("is beyond the range of any setting (a float's, a magnitude "
-                              "from 5e-324 to 1.8e308, or 0)")
-    return value
-
-
-def shown_text(text: str, limit: int = 80) -> str:
-    """`text` an option was given, quoted and cut to about `limit` characters, saying how long
-    it was (the message of every number option the user typed)."""
-    from tegrasp_drake.rig.ranges import shorten
-    return repr(text) if len(text) <= limit else f"{shorten(text, limit)!r}"
+    if math.isinf(value) or (value == 0 and text.lower().split("e")[0].strip("+-.0")):
+        return ("is beyond the range of any setting (a float's, a magnitude from 5e-324 to "
+                "1.8e308, or 0)")
+    return None
 
 
 def number_option(text: str) -> TypedNumber:
     """An argparse `type` for a number option: read_number, the text kept (TypedNumber) for
     the option's range message; text that is not such a number does not parse (argparse's
-    error, the text cut to about 80 characters)."""
+    error, the text echoed by echo.shown)."""
     import argparse
     try:
         return TypedNumber(read_number(text), text)
     except NumberTextError as e:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} {e}") from None
+        from tegrasp_drake.rig.echo import shown
+        raise argparse.ArgumentTypeError(f"{shown(text)} {e}") from None
 
-
-def typed_text(value) -> str:
-    """How a message echoes an option's number `value`: the text the user typed (a
-    TypedNumber's, cut to about 80 characters), else number_text."""
-    typed = getattr(value, "typed", None)
-    if isinstance(typed, str):
-        from tegrasp_drake.rig.ranges import shorten
-        return shorten(typed)
-    return number_text(value)

@@ -14,7 +14,8 @@ from tegrasp_drake.rig import materials
 from tegrasp_drake.robotiq import linkage
 from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z, PALM_Z
 from tegrasp_drake.robotiq.units import STROKE_M
-from tegrasp_drake.rig.ranges import bounded, number_problem, real_number, shorten
+from tegrasp_drake.rig.ranges import bounded, number_problem, real_number
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 # The entries of an object's `size` [m] for each shape.

@@ -7,12 +7,12 @@ first value outside its range or choice."""
 import collections.abc
 import dataclasses
 import math
-import sys
 import types
 import typing
 
-from tegrasp_drake.rig.integer_text import integer_beyond_problem, integer_digits
-from tegrasp_drake.rig.number_text import number_text, typed_text
+from tegrasp_drake.rig.integer_text import integer_beyond_problem
+from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.number_text import number_text
 
 _KEY = "tegrasp_range"
 _LENGTH_KEY = "tegrasp_length"
@@ -97,10 +97,10 @@ def option_problem(option: str, value, allowed: Range) -> str | None:
     `allowed`, in words naming the option (`--workers must be at least 1, got 0`); None if it
     lies in the range. A number that parses but lies outside its range is bad input (exit 1),
     not a command line that does not parse (exit 2). The value is echoed as the user typed it
-    (number_text.typed_text: `600.0001`, not 600)."""
+    (echo.shown: `600.0001`, not 600)."""
     if allowed.contains(value):
         return None
-    return f"{option} {allowed.words(value)}, got {typed_text(value)}"
+    return f"{option} {allowed.words(value)}, got {shown(value)}"
 
 
 def _number(value) -> str:
@@ -359,21 +359,6 @@ def _check_foreign(config, source: str, where: str, numbers_only: bool = False) 
     for name, declared in _FOREIGN[type(config)].items():
         _check_value(getattr(config, name), declared, source,
                      f"{where}.{name}" if where else name, numbers_only)
-
-
-def shorten(text: str, limit: int = 80) -> str:
-    """`text` cut to about `limit` characters, saying how long it was (echoed values)."""
-    if len(text) <= limit:
-        return text
-    return f"{text[:limit]}... ({len(text)} characters)"
-
-
-def shown(value, limit: int = 80) -> str:
-    """`value` as an error echoes it: its repr, shortened; an integer Python will not write
-    as text (over 4300 digits) by its length alone."""
-    if isinstance(value, int) and abs(value) > sys.float_info.max:
-        return f"<an integer of {integer_digits(value)} digits>"
-    return shorten(repr(value), limit)
 
 
 def _check_held(value, source: str, path: str, numbers_only: bool = False) -> None:

@@ -22,10 +22,13 @@ import typing
 
 import yaml
 
-from tegrasp_drake.rig.core_schema_yaml import (compose, construct, yaml11_only_boolean,
+from tegrasp_drake.rig.core_schema_yaml import (CORE_FLOAT, FLOAT_TAG, INT_TAG, compose,
+                                                construct, yaml11_only_boolean,
                                                 yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
-from tegrasp_drake.rig.ranges import number_problem, python_scalar, shorten, shown
+from tegrasp_drake.rig.number_text import float_beyond_problem
+from tegrasp_drake.rig.ranges import number_problem, python_scalar
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
@@ -197,10 +200,26 @@ def parse_yaml(text: str, source: str, *, line_offset: int = 0, column_offset: i
                           "than a few levels: give a flat mapping of its fields") from None
 
 
+def _number_node_problem(node) -> str | None:
+    """Why the number a plain YAML scalar `node` writes cannot be read as one, in words that
+    follow its field: an integer beyond the bounded reader's range, a float no float holds
+    (`.inf` and `.nan` are read, then refused as not finite by the field's check); else None."""
+    if node.tag == INT_TAG:
+        try:
+            read_integer(node.value)
+        except IntegerTextError as e:
+            return str(e)
+    elif node.tag == FLOAT_TAG and CORE_FLOAT.match(node.value) and not node.value.lower(
+            ).endswith((".inf", ".nan")):
+        return float_beyond_problem(node.value)
+    return None
+
+
 def _check_nodes(root, source: str, line_offset: int, column_offset: int,
                  root_key: str | None = None) -> None:
-    """Refuses duplicate mapping keys, an alias expansion past MAX_YAML_NODES and an integer
-    the bounded reader refuses (integer_text.py: Python would not convert it)."""
+    """Refuses duplicate mapping keys, an alias expansion past MAX_YAML_NODES, an integer
+    the bounded reader refuses (integer_text.py: Python would not convert it) and a float no
+    float holds (number_text.float_beyond_problem: `1e-400` would be read as 0)."""
     sizes = {}  # id(node) -> its size with every alias expanded; len(sizes): values written
 
     def where(node) -> str:
@@ -216,13 +235,12 @@ def _check_nodes(root, source: str, line_offset: int, column_offset: int,
             raise ConfigError(f"{source}: {where(node)}: a Python object tag "
                               f"(!!{node.tag.split(':', 2)[2]}) is never loaded; give a "
                               "plain value", where=where(node))
-        if node.tag == "tag:yaml.org,2002:int" and isinstance(node, yaml.ScalarNode):
-            try:
-                read_integer(node.value)
-            except IntegerTextError as e:
+        if isinstance(node, yaml.ScalarNode):
+            problem = _number_node_problem(node)
+            if problem is not None:
                 field = f"field '{path}' " if path else ""
-                raise ConfigError(f"{source}: {field}({where(node)}) {e}; write a number in "
-                                  "the field's range", where=where(node)) from None
+                raise ConfigError(f"{source}: {field}({where(node)}) {problem}; write a number "
+                                  "in the field's range", where=where(node))
         total = 1
         if isinstance(node, yaml.MappingNode):
             seen = {}
@@ -475,7 +493,10 @@ def check_instance(config, source: str, where: str = "") -> None:
     """Walks a dataclass instance (built in Python, or changed after loading) against its
     type hints, as `check_fields` walks YAML data: ConfigTypeError names the first field
     whose value is not of its type, e.g. a dict, None or text where a config dataclass
-    belongs; the scalars inside by check_fields's own rules. Ranges: ranges.check_ranges."""
+    belongs; the scalars inside by check_fields's own rules. A NumPy number put into a list
+    field in place is stored as the Python number it holds, as a public dataclass stores one
+    assigned (api_boundary.python_numbers), so none reaches a JSON writer. Ranges:
+    ranges.check_ranges."""
     hints = _type_hints(type(config))
     for field in dataclasses.fields(config):
         path = f"{where}.{field.name}" if where else field.name
@@ -540,6 +561,8 @@ def _check_instance_value(value, hint, path: str, source: str) -> None:
             _refuse_type(value, _type_words(hint), path, source)
         arguments = [a for a in typing.get_args(hint) if a is not Ellipsis]
         for k, item in enumerate(value):
+            if isinstance(value, list) and python_scalar(item) is not item:
+                value[k] = item = python_scalar(item)  # put in place: kept as an assigned one
             if arguments:
                 element = arguments[k] if len(arguments) > 1 and k < len(arguments) else (
                     arguments[0])

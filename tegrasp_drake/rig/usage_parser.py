@@ -53,7 +53,7 @@ def text_argument_problem(parser: argparse.ArgumentParser, namespace) -> str | N
     repeated option's) holds a control character (typed_yaml.text_problem: an escape would
     drive the terminal the value is echoed on, a NUL is refused deep in a check), named as
     the user wrote it, or None."""
-    from tegrasp_drake.rig.ranges import shorten
+    from tegrasp_drake.rig.echo import shorten
     from tegrasp_drake.rig.typed_yaml import text_problem
     for action in parser._actions:
         values = getattr(namespace, action.dest, None)

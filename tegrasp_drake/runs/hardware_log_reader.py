@@ -16,7 +16,8 @@ from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
-from tegrasp_drake.rig.ranges import field_range, shorten
+from tegrasp_drake.rig.ranges import field_range
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, file_problem, one_line,
                                      read_bounded)
 from tegrasp_drake.hardware.config import HardwareStationConfig

@@ -95,7 +95,7 @@ class BusLogWriter:
     def _said(self) -> str:
         """": what lcm-logger said" on one line (its goodbye left out), or ""."""
         from tegrasp_drake.rig.files import one_line
-        from tegrasp_drake.rig.ranges import shorten
+        from tegrasp_drake.rig.echo import shorten
         if self._output.closed:
             return ""
         self._output.seek(0)

@@ -22,7 +22,8 @@ from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_tim
                                               release_height_m, table_touch_time)
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
-from tegrasp_drake.rig.ranges import SIMULATED_DURATION, shorten
+from tegrasp_drake.rig.ranges import SIMULATED_DURATION
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.api_boundary import check_argument, public_api
 

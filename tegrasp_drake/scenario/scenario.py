@@ -24,8 +24,9 @@ from tegrasp_drake.control.controller_registry import (
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges, shorten,
+from tegrasp_drake.rig.ranges import (SEED_RANGE, Choice, Range, bounded, check_ranges,
                                       check_times_resolved, declare_ranges)
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CLEARANCE_M, OBJECT_SHAPES,
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.number_text import number_text

@@ -24,7 +24,8 @@ from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import is_integer, shorten
+from tegrasp_drake.rig.ranges import is_integer
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NPZ_START, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass

@@ -9,8 +9,8 @@ import typing
 
 from tegrasp_drake.rig.api_boundary import check_field_types, public_dataclass
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import (SEED_RANGE, bounded, check_ranges, declared_field,
-                                      shorten)
+from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, check_ranges, declared_field
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
 from tegrasp_drake.control.grasp_modes import Mode, Transition

@@ -10,7 +10,8 @@ import os
 import pathlib
 
 from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
-from tegrasp_drake.rig.ranges import is_integer, shorten
+from tegrasp_drake.rig.ranges import is_integer
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, keys_overlap,
                                           optional_field, read_yaml_file, require_mapping,
                                           require_fields)

@@ -30,7 +30,7 @@ from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, read_json
                                      remove_stale_staging_files_in, replace_problem,
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
-from tegrasp_drake.rig.ranges import shorten
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.sweep.spec import trial_problem
 
 RECORD_FORMAT = "tegrasp-sweep-record"

@@ -46,7 +46,8 @@ from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, ch
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.files import FolderHeldError, UserPathError, held_folder
 from tegrasp_drake.rig.number_text import count_text
-from tegrasp_drake.rig.ranges import Range, shorten
+from tegrasp_drake.rig.ranges import Range
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.scenario.trial_log_file import LogNotWritten
 
 logger = logging.getLogger(__name__)
@@ -147,6 +148,18 @@ WORKER_COUNT = Range(low=1)
 
 def default_workers() -> int:
     return len(os.sched_getaffinity(0))
+
+
+def cores_problem(workers: int, oversubscribe: bool) -> str | None:
+    """Why `workers` local worker processes are refused, in words that follow "--workers N:":
+    more than the cores this process may run on (default_workers), unless `oversubscribe`
+    (--oversubscribe) asks for them; None otherwise. `tegrasp sweep` and the analysis
+    scripts ask it alike."""
+    cores = default_workers()
+    if workers <= cores or oversubscribe:
+        return None
+    return (f"this machine gives this process {cores} core(s); give at most {cores}, or add "
+            f"--oversubscribe to start {workers} workers anyway")
 
 
 # Resident memory of one worker process running a trial [bytes]: sweep workers hold 250-300 MB
@@ -295,23 +308,29 @@ def _tell_earlier_temporary_files(out_dir) -> None:
 
 
 def check_sweep_folder(spec: SweepSpec, trial_function: Callable, out_dir
-                       ) -> tuple[int, dict[Path, str]]:
+                       ) -> tuple[int, dict[Path, str], bool]:
     """What run_sweep refuses in `out_dir` before it runs a trial (records made with other
     settings, or matched against other memorized events, for this spec's trial ids), checked
     without writing anything: `tegrasp sweep --dry-run` asks it, so a plan it prints is one
-    the real run does not refuse. ConfigError or SweepError, as run_sweep's; UserPathError
-    when another run is writing into the folder (hold_output_folder). Returns what the
+    the real run does not refuse. ConfigError or SweepError, as run_sweep's. Returns what the
     run would do there: the count of trials it would run (those without a finished record, as
-    run_sweep counts them) and the corrupt records it would set aside ({path: why})."""
+    run_sweep counts them), the corrupt records it would set aside ({path: why}), and whether
+    another run is writing into the folder now (it holds it: hold_output_folder), whose
+    records, each written whole, are read as they stand (a dry run writes nothing)."""
     trials = [trial.to_dict() for trial in expand_trials(spec)]
     if not Path(out_dir).is_dir():
-        return len(trials), {}  # a new folder: nothing recorded to disagree with
-    with hold_output_folder(Path(out_dir)):  # refused, as the run is, while another writes
+        return len(trials), {}, False  # a new folder: nothing recorded to disagree with
+    with ExitStack() as stack:
+        try:
+            stack.enter_context(held_folder(Path(out_dir), shared=True))
+            in_use = False
+        except FolderHeldError:
+            in_use = True
         loaded = load_records(out_dir)
         _check_records_fit(trials, trial_function, loaded.records, out_dir)
     pending = [trial for trial in trials
                if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
-    return len(pending), dict(loaded.corrupt)
+    return len(pending), dict(loaded.corrupt), in_use
 
 
 def _check_records_fit(trials, trial_function, records, out_dir) -> dict[str, dict | None]:

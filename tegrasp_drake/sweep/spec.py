@@ -20,7 +20,8 @@ from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
-from tegrasp_drake.rig.ranges import number_problem, real_number, shorten
+from tegrasp_drake.rig.ranges import number_problem, real_number
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
                                           keys_overlap)
 

@@ -16,7 +16,8 @@ from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, shorten
+from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
                                           keys_overlap, optional_field,
                                           read_yaml_file, read_yaml_file_cached, require_mapping,

@@ -113,6 +113,19 @@ def test_record_events_refuses_a_destination_before_simulating(make, words, refu
     assert folder_contents(events) == before
 
 
+
+@pytest.mark.parametrize("exists", [True, False], ids=["folder", "new folder"])
+def test_record_events_refuses_a_full_disk_before_simulating(exists, tmp_path, monkeypatch,
+                                                             capfd, no_simulation):
+    from tests.runs.test_hardware_output_safety import disk_with_free_bytes
+    events = tmp_path / "ev"
+    if exists:
+        events.mkdir()
+    disk_with_free_bytes(monkeypatch, 40_960)
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
+    assert_one_line_error(code, text, f"--events {events}", "40 kB free", "nothing was recorded")
+    assert not events.exists() or folder_contents(events) == {}
+
 # Rule: an events folder is told from a run's by its index.json, not by its folders'
 # names: an object may be called what a sweep's or a transfer's folder is.
 @pytest.mark.parametrize("object_name", ["trials", "cells", "events"])

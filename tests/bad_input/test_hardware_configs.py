@@ -13,7 +13,8 @@ import tegrasp_drake
 import tegrasp_drake as T
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 from tegrasp_drake.hardware.config import (HardwareStationConfig, LoadHardwareConfig,
-                                           hardware_config_to_yaml, watchdog_timeouts_problem)
+                                           hardware_config_to_yaml, validate_hardware_config,
+                                           watchdog_timeouts_problem)
 from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tests.bad_input.probes import assert_one_line_error, refusal, run_cli
@@ -379,3 +380,13 @@ def test_a_calibration_that_is_not_yaml_is_refused_saying_where_without_its_cont
     message = refusal(lambda: LoadTactileCalibration(tmp_path / "private"),
                       f"{tmp_path / 'private'}: {where}: is not a tactile calibration")
     assert "secret" not in message.replace(str(tmp_path), ""), message
+
+
+@pytest.mark.parametrize("field", ["lcm_url", "port"])
+def test_a_huge_integer_in_a_hardware_config_text_field_is_named(field):
+    config = HardwareStationConfig()
+    device = config.arm if field == "lcm_url" else config.tactile
+    setattr(device, field, 10 ** 5000)
+    with pytest.raises(ConfigError, match=rf"api: field '\w+\.{field}' must be a string, got "
+                                          r"int <an integer of 5001 digits>"):
+        validate_hardware_config(config, "api")

@@ -223,3 +223,10 @@ def test_a_quoted_number_is_text_in_drakes_config_sections_too(assignment, words
     field = assignment.split("=")[0]
     refusal(lambda: LoadScenario(overrides=[assignment]), f"field '{field}'", words)
     LoadScenario(overrides=[assignment.replace("'", "").replace("!!str ", "")])
+
+
+def test_a_5000_digit_lcm_url_in_a_hardware_config_names_the_file_and_the_field(tmp_path, capfd):
+    config = tmp_path / "hw.yaml"
+    config.write_text(f"arm: {{lcm_url: {DIGITS_5000}}}\n")
+    code, text = run_cli(["hardware", "--config", str(config), "--controller", "heuristic"], capfd)
+    assert_one_line_error(code, text, str(config), "field 'arm.lcm_url'", "5000 digits")

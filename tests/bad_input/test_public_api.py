@@ -438,3 +438,16 @@ def test_an_events_folder_that_is_a_file_is_named_as_a_file(tmp_path, name):
     with pytest.raises(UserPathError, match=f"{name}: argument 'events_dir': .* is a file, "
                                             "not a folder"):
         getattr(T, name)(scenario, events_dir=file)
+
+
+@pytest.mark.parametrize("field, index", [("object.size", 0), ("disturbance.hit_force_n", 1)])
+def test_a_numpy_number_put_into_a_list_field_in_place_is_kept_as_the_number_it_holds(
+        field, index):
+    import json
+    scenario = LoadScenario(name="box")
+    section, name = field.split(".")
+    values = getattr(getattr(scenario, section), name)
+    values[index] = np.float32(values[index])
+    T.grasp_plan(scenario)
+    assert type(values[index]) is float and values[index] == np.float32(values[index])
+    json.dumps(values)

@@ -231,3 +231,28 @@ def test_a_scheduler_address_with_more_than_host_and_port_is_not_an_address(addr
                          capfd)
     assert_one_line_error(code, text, "beside PROTOCOL://HOST:PORT",
                           "give tcp://127.0.0.1:8786")
+
+
+
+def test_an_analysis_script_refuses_more_workers_than_cores_as_sweep_does(tmp_path, monkeypatch):
+    from tegrasp_drake.commands.script_output import run_script
+    from tegrasp_drake.sweep import runner
+    from tests.analysis_script import load_analysis_script
+    monkeypatch.setattr(runner, "default_workers", lambda: 2)
+    script = load_analysis_script("explain_open_loop")
+    monkeypatch.setattr(script.concurrent.futures, "ProcessPoolExecutor", None)  # no trial runs
+    out = tmp_path / "open_loop.png"
+    with pytest.raises(SystemExit) as refused:
+        run_script(script.main, "explain_open_loop", [str(out), "--workers", "54"])
+    assert_one_line_error(1, refused.value.code, "explain_open_loop: error: --workers 54",
+                          "2 core(s)", "--oversubscribe")
+    assert not out.exists()
+
+
+def test_an_analysis_script_takes_at_most_the_cores_by_default_and_more_when_asked():
+    from tegrasp_drake.commands.script_output import script_parser
+    from tegrasp_drake.sweep import runner
+    parser = script_parser("a_script", "A script.")
+    parser.add_workers()
+    assert parser.parse_args([]).workers == min(2, runner.default_workers())
+    assert parser.parse_args(["--workers", "54", "--oversubscribe"]).workers == 54

@@ -301,3 +301,24 @@ def test_an_interrupted_record_events_keeps_the_users_empty_folder(tmp_path, mon
     code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
     assert_one_interruption_line(code, text, "SIGTERM")
     assert events.is_dir() and list(events.iterdir()) == []
+
+
+@pytest.mark.parametrize("name", ["SIGTERM", "SIGINT", "SIGHUP"])
+def test_emulate_stopped_by_a_signal_ends_with_128_plus_its_number(name, tmp_path):
+    lcm_url = f"udpm://239.255.76.67:{7900 + os.getpid() % 500}?ttl=0"
+    with subprocess.Popen([sys.executable, "-m", "tegrasp_drake", "emulate", "robotiq",
+                           "--lcm-url", lcm_url], cwd=tmp_path, text=True,
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          preexec_fn=default_signal_dispositions) as emulator:
+        try:
+            lines = []
+            while not lines or lines[-1].strip() != "ready":  # up: its handlers are in place
+                lines.append(emulator.stdout.readline())
+                assert lines[-1], "".join(lines) + emulator.stderr.read()
+            emulator.send_signal(getattr(signal, name))
+            said, err = emulator.communicate(timeout=120)
+        finally:
+            if emulator.poll() is None:
+                emulator.kill()
+    assert said.strip().splitlines()[-1] == "stopped", said
+    assert_one_interruption_line(emulator.returncode, err, name)

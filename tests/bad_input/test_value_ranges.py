@@ -374,3 +374,19 @@ def test_tegrasp_trial_says_a_carriage_side_grasp_out_of_reach_as_bad_input(tmp_
         argv += ["--set", setting]
     code, text = run_cli(argv, capfd)
     assert code == 1 and "placement.expected_xy" in text and "internal error" not in text, text
+
+
+@pytest.mark.parametrize("number", ["1e-400", "-1e-400", "1e400", "-1.5e400"])
+def test_a_set_number_no_float_holds_is_refused_naming_the_field(number, capfd):
+    """`1e-400` is not read as 0, nor `1e400` as inf: refused as the number options refuse
+    them."""
+    code, text = run_cli(["trial", "--set", f"object.mass={number}"], capfd)
+    assert code == 1
+    assert "field 'object.mass'" in text and "beyond the range of any setting" in text, text
+
+
+def test_a_scenario_file_number_no_float_holds_is_refused_naming_the_file_and_field(tmp_path):
+    scenario = tmp_path / "scenarios.yaml"
+    scenario.write_text("x:\n  object: {name: box, mass: 1e-400}\n")
+    refusal(lambda: LoadScenario(scenario, "x"), str(scenario), "mass",
+            "beyond the range of any setting")

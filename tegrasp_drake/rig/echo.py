@@ -1,0 +1,34 @@
+"""Values as a message echoes them: the one echo of every value a user gave that an error, a
+warning or a usage message repeats. A value pasted by mistake is cut to ECHO_CHARS, so that no
+message runs pages long, and the echo never raises, so that no message can fail to be made."""
+
+import sys
+
+# How many characters of a value a message repeats.
+ECHO_CHARS = 80
+
+
+def shorten(text: str, limit: int = ECHO_CHARS) -> str:
+    """`text` cut to about `limit` characters, saying how long it was."""
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit]}... ({len(text)} characters)"
+
+
+def shown(value) -> str:
+    """`value` as a message echoes it, cut to ECHO_CHARS: a number an option was given as the
+    user typed it (number_text.TypedNumber: `600.0001`, not 600), a text quoted, an integer
+    Python will not write as text (over 4300 digits) by its count of digits, anything else by
+    its repr, or by its type where its repr fails."""
+    from tegrasp_drake.rig.integer_text import integer_digits
+    typed = getattr(value, "typed", None) if isinstance(value, float) else None
+    if isinstance(typed, str):
+        return shorten(typed)
+    if isinstance(value, str):
+        return repr(shorten(value))
+    if isinstance(value, int) and abs(value) > sys.float_info.max:
+        return f"<an integer of {integer_digits(value)} digits>"
+    try:
+        return shorten(repr(value))
+    except Exception:  # any repr may fail (a huge int inside a list); the message must not
+        return f"<a {type(value).__name__} that cannot be written as text>"

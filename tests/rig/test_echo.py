@@ -1,0 +1,43 @@
+import argparse
+
+import pytest
+
+from tegrasp_drake.rig.echo import ECHO_CHARS, shown
+from tegrasp_drake.rig.integer_text import integer_option
+from tegrasp_drake.rig.number_text import number_option
+
+
+def test_integer_and_number_options_echo_a_long_text_alike():
+    text = "9" * (2 * ECHO_CHARS) + "x"
+    echoes = []
+    for option in (integer_option, number_option):
+        with pytest.raises(argparse.ArgumentTypeError) as error:
+            option(text)
+        echoes.append(str(error.value).split(" is not")[0])
+    assert echoes == [shown(text), shown(text)]
+    assert f"({len(text)} characters)" in shown(text)
+
+
+def test_a_text_is_echoed_quoted_and_cut():
+    assert shown("abc") == "'abc'"
+    assert shown("a" * 1000) == repr("a" * ECHO_CHARS + "... (1000 characters)")
+
+
+def test_a_number_typed_is_echoed_as_typed():
+    assert shown(number_option("600.0001")) == "600.0001"
+    assert shown(number_option("1e-9")) == "1e-9"
+
+
+class _Unwritable:
+    def __repr__(self):
+        raise RuntimeError("no repr")
+
+
+@pytest.mark.parametrize("value, expected", [
+    (10 ** 5000, "<an integer of 5001 digits>"),
+    ([10 ** 5000], "<a list that cannot be written as text>"),
+    (_Unwritable(), "<a _Unwritable that cannot be written as text>"),
+    (b"\xff" * 200, repr(b"\xff" * 200)[:ECHO_CHARS] + "... (803 characters)"),
+], ids=["huge integer", "list of a huge integer", "repr raises", "bytes"])
+def test_an_echo_never_raises(value, expected):
+    assert shown(value) == expected
