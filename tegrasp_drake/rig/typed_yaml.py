@@ -692,8 +692,12 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False) -> N
         element = typing.get_args(hint)[0]
         if not isinstance(value, list):
             words = _SCALAR_WORDS.get(element, (None, "entries"))[1]
+            fix = ""
+            if element is str and isinstance(value, str) and not assignment_problem(value):
+                words = "KEY=VALUE settings"  # one setting where a list of them belongs
+                fix = f" (write it as a list: [{shorten(value)}])"
             raise ConfigError(f"{source}: field '{path}' must be a list of {words}, got "
-                              f"{_describe(value)}")
+                              f"{_describe(value)}{fix}")
         for k, item in enumerate(value):
             _check_value(item, element, f"{path}[{k}]", source, stored)
     elif origin in (dict, collections.abc.Mapping):
