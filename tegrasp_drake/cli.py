@@ -32,10 +32,16 @@ COMMAND_MODULES = (
 )
 
 
-# The arguments that name a file or folder, by their `dest`: an empty one ('' from an unset
-# shell variable) is refused, never taken as "not given" or as the current folder.
-PATH_ARGUMENTS = ("scenario", "events", "out", "html", "spec", "logs", "trial",
-                  "write_config", "config", "log", "source")
+# The arguments that name a file or folder, by their `dest` (or (command, dest) where one
+# command's differs), with what each takes: an empty one ('' from an unset shell variable)
+# is refused saying so, never taken as "not given" or as the current folder.
+PATH_ARGUMENTS = {
+    "scenario": "a scenario YAML file", "events": "an events folder", "out": "an output folder",
+    "html": "an HTML file to write", "spec": "a spec YAML file",
+    "logs": "a folder for the trial logs", "trial": "a trial log file (.npz)",
+    "write_config": "a file to write the hardware config to",
+    "config": "a hardware config YAML file", "log": "an LCM log file",
+    "source": "a trial log file or a results folder", ("plot", "out"): "a figure file"}
 
 
 def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
@@ -51,7 +57,8 @@ def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
             continue
         name = (action.option_strings[0] if action.option_strings
                 else action.metavar or action.dest)
-        what = ("a file or folder name" if action.dest in PATH_ARGUMENTS else
+        what = (PATH_ARGUMENTS.get((args.command, action.dest), PATH_ARGUMENTS[action.dest])
+                if action.dest in PATH_ARGUMENTS else
                 f"a value, or leave {name} out" if action.option_strings else "a value")
         command.exit(2, f"{command.prog}: error: {name} '' is empty; give {what}\n")
 

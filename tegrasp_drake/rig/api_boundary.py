@@ -158,9 +158,10 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
             values = (value,)
         for item in values:
             if not _matches(item, hint):
-                raise TypeError(f"{name}: argument '{argument}' must be "
-                                f"{_describe_hint(hint)}, got {type(item).__name__} "
-                                f"{shown(item)}")
+                where, expected, wrong = _mismatch(argument, item, hint)
+                raise TypeError(f"{name}: argument '{where}' must be "
+                                f"{_describe_hint(expected)}, got {type(wrong).__name__} "
+                                f"{shown(wrong)}")
     for argument, value in bound.arguments.items():  # a config's fields, changed since?
         if _mutable_dataclass(value):
             from tegrasp_drake.rig.typed_yaml import check_instance
@@ -176,6 +177,23 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
     for argument, value in bound.arguments.items():  # every type is right: the values
         for constraint in _constraints(hints.get(argument))[1]:
             _check_constraint(name, argument, value, constraint)
+
+
+def _mismatch(where: str, value, hint) -> tuple:
+    """(where, hint, value) of what in `value` is not of `hint`: the first wrong item of a
+    list or tuple of the hint's kind (`overrides[0]`), else the value itself."""
+    members = typing.get_args(hint) if typing.get_origin(hint) in (
+        typing.Union, types.UnionType) else (hint,)
+    for member in members:
+        member = _constraints(member)[0]
+        origin, arguments = typing.get_origin(member), typing.get_args(member)
+        if (isinstance(value, (list, tuple)) and isinstance(origin, type)
+                and isinstance(value, origin) and arguments
+                and arguments[1:] in ((), (Ellipsis,))):
+            for k, item in enumerate(value):
+                if not _matches(item, arguments[0]):
+                    return _mismatch(f"{where}[{k}]", item, arguments[0])
+    return where, hint, value
 
 
 def python_numbers(value):

@@ -26,8 +26,8 @@ from tegrasp_drake.rig.core_schema_yaml import (CORE_FLOAT, FLOAT_TAG, INT_TAG, 
                                                 construct, yaml11_only_boolean,
                                                 yaml11_only_number)
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
-from tegrasp_drake.rig.number_text import float_beyond_problem
-from tegrasp_drake.rig.ranges import number_problem, python_scalar
+from tegrasp_drake.rig.number_text import float_beyond_problem, number_text
+from tegrasp_drake.rig.ranges import number_problem, python_scalar, range_of
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
@@ -476,7 +476,8 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
                 and len(value) == 0):
             raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
                               f"out for {means}")
-        _check_value(value, hints[key], path, source, stored)
+        _check_value(value, hints[key], path, source, stored,
+                     getattr(range_of(fields[key]), "unit", ""))
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING
                     and field.default_factory is dataclasses.MISSING)
@@ -695,7 +696,9 @@ def _refuse_tag(value, path: str, source: str) -> None:
         raise ConfigError(f"{source}: field '{path}': {words}" if path else f"{source}: {words}")
 
 
-def _check_value(value, hint, path: str, source: str, stored: bool = False) -> None:
+def _check_value(value, hint, path: str, source: str, stored: bool = False,
+                 unit: str = "") -> None:
+    """check_fields's check of one value of type `hint`; `unit`: its field's declared unit."""
     origin = typing.get_origin(hint)
     if origin not in (typing.Union, types.UnionType):
         _refuse_tag(value, path, source)
@@ -707,7 +710,7 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False) -> N
             raise ConfigError(f"{source}: field '{path}' is null: give a value, or leave "
                               "the field out to take its default")
         if len(members) == 1:
-            _check_value(value, members[0], path, source, stored)
+            _check_value(value, members[0], path, source, stored, unit)
         else:
             member, value = _union_member(value, members, path, source)
             _check_value(value, member, path, source, stored)
@@ -715,29 +718,35 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False) -> N
         element = typing.get_args(hint)[0]
         if not isinstance(value, list):
             words = _SCALAR_WORDS.get(element, (None, "entries"))[1]
+            fix = ""
+            if element is str and isinstance(value, str) and not assignment_problem(value):
+                words = "KEY=VALUE settings"  # one setting where a list of them belongs
+                fix = f" (write it as a list: [{shorten(value)}])"
             raise ConfigError(f"{source}: field '{path}' must be a list of {words}, got "
-                              f"{_describe(value)}")
+                              f"{_describe(value)}{fix}")
         for k, item in enumerate(value):
-            _check_value(item, element, f"{path}[{k}]", source, stored)
+            _check_value(item, element, f"{path}[{k}]", source, stored, unit)
     elif origin in (dict, collections.abc.Mapping):
         if not isinstance(value, dict):
             raise ConfigError(f"{source}: field '{path}' must be a mapping, got "
                               f"{_describe(value)}")
         for key, item in value.items():
-            _check_value(item, typing.get_args(hint)[1], f"{path}.{key}", source, stored)
+            _check_value(item, typing.get_args(hint)[1], f"{path}.{key}", source, stored, unit)
     elif hint in _SCALAR_WORDS:
         if not _is_scalar(value, hint):
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "
-                              f"{_describe(value)}{_text_as_value_hint(value, hint)}")
+                              f"{_describe(value)}{_text_as_value_hint(value, hint, unit)}")
         _check_text(value, path, source)
     else:
         check_fields(value, hint, source, path, stored=stored)
 
 
-def _text_as_value_hint(value, hint) -> str:
+def _text_as_value_hint(value, hint, unit: str = "") -> str:
     """For a number or boolean read as text (quoted, or in a form only YAML 1.1 reads as a
     number or boolean: `yes`, `off`), how to write it as a value of the field's type: decimal
-    digits, an integer field's without a point or exponent; true or false."""
+    digits, an integer field's without a point or exponent; true or false. A number written
+    with a unit (`150 g`): the field's `unit`, and the number in it where the unit is one
+    of its prefixed forms (_unit_converted)."""
     if hint is bool and isinstance(value, str):
         if yaml11_only_boolean(value.strip()):
             return " (YAML 1.2 reads yes, no, on and off as text: write true or false)"
@@ -749,7 +758,7 @@ def _text_as_value_hint(value, hint) -> str:
         try:
             number = float(value)
         except ValueError:
-            return ""
+            return _unit_hint(value, unit)
         if not math.isfinite(number):
             return ""
         if hint is int:
@@ -758,6 +767,36 @@ def _text_as_value_hint(value, hint) -> str:
             return f" (YAML reads it as text: write {int(number)}, digits without quotes)"
         return f" (YAML reads it as text: write {number!r})"
     return ""
+
+
+# The SI prefixes a number given with a unit may carry, as powers of ten.
+_PREFIXES = {"": 0, "k": 3, "c": -2, "m": -3, "u": -6, "\u00b5": -6, "n": -9}
+_NUMBER_WITH_UNIT = re.compile(r"([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(\S.*)")
+
+
+def _unit_converted(number: str, written: str, unit: str) -> float | None:
+    """`number` given in `written` as a number in `unit` when both are one unit with SI
+    prefixes (150 in g as 0.15 kg, 15 in mm as 0.015 m), else None."""
+    for base in (unit, unit[1:] if unit[:1] in _PREFIXES else ""):
+        prefix = written[:-len(base)] if base and written.endswith(base) else None
+        if prefix in _PREFIXES:
+            power = _PREFIXES[prefix] - _PREFIXES[unit[:-len(base)]]
+            converted = float(number) * 10.0 ** power  # None: beyond a float's range
+            fits = math.isfinite(converted) and bool(converted) == bool(float(number))
+            return converted if fits else None
+    return None
+
+
+def _unit_hint(value: str, unit: str) -> str:
+    """How to write `value`, a number with a unit, in a field declared in `unit` ("" for
+    none, or for other text)."""
+    given = _NUMBER_WITH_UNIT.fullmatch(value.strip())
+    if not unit or given is None:
+        return ""
+    number = _unit_converted(*given.groups(), unit)
+    if number is None:
+        return f" (the field is in {unit}: write the number in {unit}, without a unit)"
+    return f" (the field is in {unit} and takes a bare number: write {number_text(number)})"
 
 
 def _union_member(value, members, path: str, source: str):

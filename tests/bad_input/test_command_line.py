@@ -192,6 +192,17 @@ def test_every_empty_path_option_is_refused(command, option, capfd):
     assert code == 2 and f"{option} '' is empty" in text and "Traceback" not in text
 
 
+@pytest.mark.parametrize("argv, words", [
+    (["trial", "--scenario"], "give a scenario YAML file"),
+    (["emulate", "myrio", "--write-config"], "give a file to write the hardware config to"),
+    (["trial", "--out"], "give an output folder"),
+    (["plot", "events", "--out"], "give a figure file"),
+])
+def test_an_empty_path_option_is_told_what_it_takes(argv, words, capfd):
+    code, text = run_cli([*argv, ""], capfd)
+    assert code == 2 and words in text, text
+
+
 # --- 5. safe messages ------------------------------------------------------------------------
 
 @pytest.mark.parametrize("character", ["\x1b", "\x07", "\x9b", "\u2028", "\r", "\n"])

@@ -44,6 +44,12 @@ def test_every_public_function_checks_every_argument(name):
      "LoadScenario: argument 'name' must be str, got NoneType None"),
     (lambda: tegrasp_drake.LoadScenario(overrides="object.mass=1"),
      "argument 'overrides' must be a sequence of str (not a single string)"),
+    (lambda: tegrasp_drake.LoadScenario(overrides=[b"object.mass=0.1"]),
+     "LoadScenario: argument 'overrides[0]' must be str, got bytes b'object.mass=0.1'"),
+    (lambda: tegrasp_drake.LoadHardwareConfig("hw.yaml", overrides=["a=1", b"x=1"]),
+     "LoadHardwareConfig: argument 'overrides[1]' must be str, got bytes b'x=1'"),
+    (lambda: tegrasp_drake.LoadSweepSpec("s.yaml", builtin_objects=[b"box"]),
+     "LoadSweepSpec: argument 'builtin_objects[0]' must be str, got bytes b'box'"),
     (lambda: tegrasp_drake.MakeStation(None), "MakeStation: argument 'scenario' must be Scenario"),
     (lambda: tegrasp_drake.run_trial("box"), "run_trial: argument 'scenario' must be Scenario"),
     (lambda: tegrasp_drake.load_trial_log(None), "load_trial_log: argument 'path' must be str"),
@@ -68,8 +74,8 @@ def test_every_public_dataclass_checks_its_collections(name):
 
 
 def test_a_public_function_checks_the_items_of_a_list(tmp_path):
-    with pytest.raises(TypeError, match="save_memorized_events: argument 'events' must be an "
-                                        "iterable of MemorizedEvent"):
+    with pytest.raises(TypeError, match=r"save_memorized_events: argument 'events\[0\]' must "
+                                        "be MemorizedEvent, got str 'not an event'"):
         tegrasp_drake.save_memorized_events(tmp_path, ["not an event"])
     assert not (tmp_path / "index.json").exists()
 

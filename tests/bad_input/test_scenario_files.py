@@ -43,6 +43,21 @@ def test_a_bad_scenario_value_is_named_and_nothing_runs(overrides, expected, cap
     assert_one_line_error(code, text, expected, f"--set {overrides[0]}")
 
 
+@pytest.mark.parametrize("overrides, expected", [
+    (["object.mass=150 g"], "field 'object.mass' must be a finite number, got str '150 g' (the "
+                            "field is in kg and takes a bare number: write 0.15)"),
+    (["placement.offset=[0, 15mm]"], "field 'placement.offset[1]' must be a finite number, got "
+                                     "str '15mm' (the field is in m and takes a bare number: "
+                                     "write 0.015)"),
+    (["grasp.grip_force=25 N"], "(the field is in N and takes a bare number: write 25)"),
+    (["object.mass=5 lb"], "(the field is in kg: write the number in kg, without a unit)"),
+])
+def test_a_number_written_with_its_unit_is_told_the_fields_unit(overrides, expected):
+    with pytest.raises(T.ConfigError) as error:
+        LoadScenario(overrides=overrides)
+    assert expected in str(error.value)
+
+
 def test_a_yaml_syntax_error_in_a_scenario_file_is_named(tmp_path, capfd):
     scenario = tmp_path / "bad.yaml"
     scenario.write_text("mine:\n  object: {name: box\n")

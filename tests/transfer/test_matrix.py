@@ -93,6 +93,9 @@ def test_the_remedy_spec_is_cells_of_the_matrix_with_the_envelope_and_floor_in_e
      "unknown world 'other'"),
     ("worlds: {ideal: {scenario: memorizing_world, overrides: [object.name=box]}}\n"
      "cells: [[ideal, ideal]]\n", "'object.name' is set per trial"),
+    ("worlds: {ideal: {scenario: memorizing_world, overrides: \"gripper.model=linkage\"}}\n"
+     "cells: [[ideal, ideal]]\n", "field 'worlds.ideal.overrides' must be a list of KEY=VALUE "
+     "settings, got str 'gripper.model=linkage' (write it as a list: [gripper.model=linkage])"),
     ("worlds: {ideal: {scenario: memorizing_world, overrides: [tactile.transducer=piezo]}}\n"
      "cells: [[ideal, ideal]]\n", "tactile.transducer"),
     ("worlds: {ideal/x: {scenario: memorizing_world}}\ncells: [[ideal/x, ideal/x]]\n",
