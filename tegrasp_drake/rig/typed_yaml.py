@@ -25,10 +25,10 @@ import yaml
 from tegrasp_drake.rig.core_schema_yaml import (CORE_FLOAT, FLOAT_TAG, INT_TAG, compose,
                                                 construct, yaml11_only_boolean,
                                                 yaml11_only_number)
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.number_text import float_beyond_problem, number_text
 from tegrasp_drake.rig.ranges import number_problem, python_scalar, range_of
-from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
