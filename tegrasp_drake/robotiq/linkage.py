@@ -164,3 +164,31 @@ def flip_height(theta: float, force_n: float) -> float:
     """The contact height [m] above the pad centre below which force_n [N] lifts B off its pin."""
     return brentq(lambda h: coupler_generalized_force(theta, h, force_n), -0.1, 0.1,
                   xtol=1e-7)
+
+
+def hooked_object_z(theta: float, contact_height_m: float, radius_m: float) -> float | None:
+    """The approach-axis coordinate z [m, base frame] of the centre of a round object of
+    radius_m [m] on the grasp axis (y = 0) that the +y finger, the driver at theta [rad], touches
+    contact_height_m [m] above its pad's centre (along the pad, toward the fingertip) with the
+    coupler off its pin: the fingertip curled past the object and hooks its far side. The
+    coupler's turn is the one nearest the pin, in (-COUPLER_RANGE_RAD, 0), at which the pad
+    face's inward normal at that point passes through the object's centre on y = 0; None when
+    no turn does (the pad flat on the pin reaches the object at that opening, or the object
+    is too wide for it). Rigid pad and object: the pad face is the open pose's, turned."""
+    p_open = PAD_CENTER_OPEN + np.array([0.0, contact_height_m])
+
+    def centre(beta: float) -> np.ndarray:
+        pose = finger_pose(theta, beta)
+        contact = pose.c + _rotate(p_open - C, pose.follower_angle)
+        # the face's inward normal, -y in the open pose, turned with the follower
+        return contact + radius_m * _rotate(np.array([-1.0, 0.0]), pose.follower_angle)
+
+    # 1 deg steps from the pin: the first sign change is the curl nearest the pin
+    betas = np.linspace(0.0, -COUPLER_RANGE_RAD, int(math.degrees(COUPLER_RANGE_RAD)) + 1)
+    y = [float(centre(float(b))[0]) for b in betas]
+    for k in range(len(betas) - 1):
+        if y[k] == 0.0 or y[k] * y[k + 1] < 0.0:
+            beta = brentq(lambda b: float(centre(b)[0]), float(betas[k + 1]), float(betas[k]),
+                          xtol=1e-9) if y[k] != 0.0 else float(betas[k])
+            return float(centre(beta)[1])
+    return None

@@ -54,6 +54,7 @@ RULE_COUNTS = {
                       "onset, an impact: not quasi-static"),
     "closed_untouched": (None, "no taxel's touch in the close: fires on what no pad pressed"),
     "ra_onset_one_film": (None, "one film's RA onset, an impact the SA need not see"),
+    "curled_fingertips": (None, "the fingertips curled past the object: both close on it"),
 }
 
 

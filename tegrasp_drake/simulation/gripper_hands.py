@@ -16,7 +16,7 @@ from pydrake.systems.primitives import MatrixGain
 from tegrasp_drake.modelgen.robotiq_linkage_sdf import robotiq_linkage_sdf
 from tegrasp_drake.rig.objects import PRISMATIC_HAND_EVENTS_FOLDER
 from tegrasp_drake.robotiq import drive, linkage
-from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z
+from tegrasp_drake.robotiq.dimensions import HALF_STROKE, PAD_CENTER_Z, PALM_Z
 
 
 @dataclasses.dataclass(frozen=True)
@@ -55,6 +55,11 @@ class PrismaticHand:
         """The pads' centres' offset beyond the grasp frame [m]: 0 at any opening."""
         return 0.0
 
+    def hooked_object_offset(self, opening_m: float, contact_offset_m: float,
+                             object_width_m: float) -> float | None:
+        """None: prismatic pads stay parallel, they cannot curl past an object."""
+        return None
+
 
 @dataclasses.dataclass(frozen=True)
 class LinkageHand:
@@ -92,6 +97,23 @@ class LinkageHand:
         opening_m apart (on the pin): -9.3 mm open, +4.0 mm at 25 mm."""
         return (float(linkage.PAD_CENTER_OPEN[1]) - PAD_CENTER_Z
                 + linkage.pad_travel_at_opening(opening_m))
+
+    def hooked_object_offset(self, opening_m: float, contact_offset_m: float,
+                             object_width_m: float) -> float | None:
+        """Where the centre of an object object_width_m [m] across lies along the approach axis
+        [m] from the pads' centres at that width (on the pin), when the curled fingertips, the
+        drive at opening_m [m] (its on-pin reading), touch it contact_offset_m [m] toward the
+        fingertips from the pads' centres (linkage.hooked_object_z, the object taken round,
+        centred between the fingers); not nearer the palm than the palm (PALM_Z) lets it be.
+        None when the pads could touch it flat there. At 4.5 mm open on the distal row (+9 mm)
+        a 25 mm cylinder lies 25.5 mm toward the palm."""
+        radius = object_width_m / 2.0
+        z = linkage.hooked_object_z(linkage.driver_angle(opening_m / 2.0), contact_offset_m,
+                                    radius)
+        if z is None:
+            return None
+        return max(z, PALM_Z + radius) - float(linkage.pad_center(
+            linkage.driver_angle(radius))[1])
 
 
 def add_gripper_model(parser, hand, pad_refinement: int = 0):

@@ -10,11 +10,11 @@ import pytest
 from tegrasp_drake.control.controller_config import GraspControllerConfig, TaxelAwareConfig
 from tegrasp_drake.control.taxel_aware.contact_geometry import (
     FaceTouch, Shift, approach_shift, beyond_pads_shift, bracketed_object, caged_behind_pads,
-    held_tilted, opposite_face, pushed_distance_m, release_topples, remembered_faces,
+    curled_touch, held_tilted, opposite_face, pushed_distance_m, release_topples, remembered_faces,
     touched_beyond_pads, touched_face, touched_faces, untouched_reach_m)
 from tegrasp_drake.control.taxel_contact import grasp_contact
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
-from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH
+from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS
 from tegrasp_drake.rig.taxel_layout import CELL_Y, COLUMNS, ROWS
 from tegrasp_drake.robotiq.units import STROKE_M
 
@@ -99,6 +99,16 @@ def test_fingers_closed_past_an_object_first_touched_on_the_palm_side_cage_it():
     assert not _caged(closed_to_request=True)  # closed on nothing (fell over, slid away)
     assert not _caged(first_touch_offset_m=0.009)  # fingertip side: pushed out beyond them
     assert not _caged(first_touch_offset_m=0.0)  # no pad ever touched it
+
+
+def test_a_first_touch_narrower_than_the_object_less_both_pads_elastomer_is_a_curl():
+    width = 0.025
+    flat_limit = width - 2 * PAD_THICKNESS  # both pads pressed through their 4 mm
+    assert curled_touch(0.0045, width)
+    assert curled_touch(flat_limit - 1e-4, width)
+    assert not curled_touch(flat_limit + 1e-4, width)
+    assert not curled_touch(0.0217, width)  # the distal rows meeting it beyond the pads
+    assert not curled_touch(-1.0, width)  # no touch
 
 
 def test_a_diagonal_contact_line_is_a_tilted_hold():

@@ -117,6 +117,17 @@ SCENES = {
     "ra_onset_one_film": (Scene("thin_cylinder", (-0.015, -0.025), seed=950), Expect(
         (("Reach", "Re-Reach", "ra_onset_one_film"),), first=True,
         check=lambda found, r: found[0].offset_m < -0.015)),
+    # The thin cylinder 23 mm nearer the palm: the fingers pass it below their flip height,
+    # no pad touching, curl past it and their fingertips hook its far side, the distal rows
+    # pressed at a 4-5 mm opening (the cylinder is 25 mm across). Read as positions along the
+    # approach, those rows moved the hand 9 mm forward, into it, twice (measured on the second
+    # grid's (-15, 0) mm scene, whose first close had pulled the cylinder here): it tipped
+    # over and the grasp failed. The linkage's closed form puts its centre 25-26 mm toward
+    # the palm; backed off by that, the pads close flat on it.
+    "curled_fingertips": (Scene("thin_cylinder", (-0.023, 0.0), seed=742), Expect(
+        (("Reach", "Re-Reach", "curled_fingertips"),), first=True,
+        check=lambda found, r: found[0].approach_offset_m < -0.015
+        and "off_centre" not in [t["code"] for t in r["transitions"]])),
     # The Load-Lift event made unmatchable (thresholds of 1: a score must exceed its
     # threshold, and a correlation never exceeds 1), as for an object whose load the events
     # were not recorded on: lifted after the Load timeout with both pads on the box, where the

@@ -79,6 +79,10 @@ CASES = [
      dict(estimate=dict(ra_onset_finger="right", ra_onset_opening_m=0.078,
                         ra_onset_topples=True)),
      dict(estimate=dict(ra_onset_finger="right", ra_onset_opening_m=0.078)), Counters()),
+    ("curled_fingertips", Mode.REACH,
+     dict(contact=(True, True), shape=pads(3, 3), event_matched=True,
+          estimate=dict(hooked_object_dx_m=-0.0255, first_touch_opening_m=0.0045)),
+     dict(contact=(True, True), shape=pads(3, 3), event_matched=True), Counters()),
     ("beyond_pads", Mode.REACH,
      dict(estimate=dict(touched_beyond_pads=True, first_touch_finger="right",
                         first_touch_opening_m=0.0719)),
@@ -274,6 +278,14 @@ def test_an_ra_onset_with_no_re_reach_left_lets_the_close_go_on():
                                                  ra_onset_opening_m=0.078,
                                                  ra_onset_topples=True))
     assert decide(Mode.REACH, obs, USED_UP) is None
+
+
+def test_curled_fingertips_re_reach_along_the_approach_to_the_hooked_objects_centre():
+    obs = situation(contact=(True, True), shape=pads(3, 3), event_matched=True,
+                    estimate=dict(hooked_object_dx_m=-0.0255, first_touch_opening_m=0.0045))
+    assert decide(Mode.REACH, obs).action.shift == Shift(-0.0255, 0.0)
+    # with no Re-Reach left it stands aside, and off_centre's forward move with it
+    assert decide(Mode.REACH, obs, USED_UP).code == "reach_event"
 
 
 def test_beyond_the_pads_moves_forward_by_half_a_pad_and_by_the_push_toward_the_pad():

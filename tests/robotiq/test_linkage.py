@@ -178,3 +178,33 @@ def test_the_loops_stay_closed_through_a_whole_trial():
     simulator.AdvanceTo(12.5)  # reach, grip, lift, hold, place, release
     assert len(worst) > 10000  # every plant step
     assert max(worst) < 0.1e-3
+
+
+@pytest.mark.parametrize("opening_m,beta_deg,contact_height_m",
+                         [(0.0045, -37.0, 0.009), (0.0045, -32.0, 0.003),
+                          (0.010, -30.0, 0.006), (0.020, -20.0, 0.009)])
+def test_the_hooked_objects_centre_is_where_the_curled_pads_normal_meets_the_grasp_axis(
+        opening_m, beta_deg, contact_height_m):
+    # forward through the five-bar: the curled finger's contact point and face normal; the
+    # round object touching it there, centred on y = 0, has the radius that normal reaches
+    theta, beta = linkage.driver_angle(opening_m / 2), math.radians(beta_deg)
+    pose = linkage.finger_pose(theta, beta)
+    p = linkage.point_on_follower(theta, beta,
+                                  linkage.PAD_CENTER_OPEN + np.array([0.0, contact_height_m]))
+    phi = pose.follower_angle
+    normal = np.array([-math.cos(phi), -math.sin(phi)])  # the open pose's -y, turned by phi
+    radius = p[0] / math.cos(phi)
+    centre = p + radius * normal
+    assert centre[0] == pytest.approx(0.0, abs=1e-12)
+    assert linkage.hooked_object_z(theta, contact_height_m, radius) == pytest.approx(
+        centre[1], abs=1e-6)
+
+
+def test_pads_flat_on_an_object_at_its_width_hook_nothing_beyond_their_centre():
+    # 0.1 mm: the joint coordinates close the five-bar's loop to 4 um, so at the width the
+    # root lies a fraction of a degree off the pin
+    radius = 0.0125
+    theta = linkage.driver_angle(radius)
+    assert linkage.hooked_object_z(theta, 0.0, radius) == pytest.approx(
+        linkage.pad_center(theta)[1], abs=1e-4)
+    assert linkage.hooked_object_z(linkage.driver_angle(0.015), 0.0, radius) is None

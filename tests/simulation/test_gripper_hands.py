@@ -7,6 +7,8 @@ import pytest
 from pydrake.multibody.plant import MultibodyPlant
 
 from tegrasp_drake.rig import paths
+from tegrasp_drake.robotiq import linkage
+from tegrasp_drake.robotiq.dimensions import PALM_Z
 from tegrasp_drake.simulation.gripper_hands import (LinkageHand, PrismaticHand,
                                                     actuated_state_selector, gripper_hand)
 
@@ -51,6 +53,20 @@ def test_linkage_pad_centres_move_along_the_approach_axis_as_the_2f85s_do():
     np.testing.assert_allclose([1000 * LINKAGE.pad_center_offset(g)
                                 for g in (0.085, 0.045, 0.025)], [-9.3, 1.8, 4.0], rtol=0,
                                atol=0.05)
+
+
+def test_curled_linkage_fingertips_place_the_hooked_cylinder_toward_the_palm():
+    # The figure its docstring gives: the 25 mm cylinder hooked at 4.5 mm open on the distal
+    # row (+9 mm) lies 25.5 mm toward the palm from the pads' centres at its width; hooked
+    # nearer the pads' centres it lies less far; no hand can put it inside the palm.
+    assert 1000 * LINKAGE.hooked_object_offset(0.0045, 0.009, 0.025) == pytest.approx(
+        -25.5, abs=0.05)
+    assert (LINKAGE.hooked_object_offset(0.0045, 0.009, 0.025)
+            < LINKAGE.hooked_object_offset(0.0045, 0.003, 0.025) < 0.0)
+    palm = PALM_Z + 0.0125 - linkage.pad_center(linkage.driver_angle(0.0125))[1]
+    assert LINKAGE.hooked_object_offset(0.0, 0.012, 0.025) >= palm
+    assert LINKAGE.hooked_object_offset(0.030, 0.0, 0.025) is None  # flat pads reach it
+    assert PRISMATIC.hooked_object_offset(0.0045, 0.009, 0.025) is None
 
 
 def test_prismatic_hand_moves_its_pads_along_the_stroke_only():

@@ -9,6 +9,7 @@ the whole taxel array, over what one ContactEstimator senses.
   finger_strike.py       rule: a finger's front struck the object in the approach
   approach_contact.py    rule: a pad touched in the approach
   ra_onset.py            rule: an RA onset on one film alone stops the close
+  curled_fingertips.py   rule: a touch of fingertips curled past the object backs off
   beyond_pads.py         rule: a first touch beyond the pads stops the close
   off_centre.py          rule: re-centre along the approach axis
   one_sided_at_width.py  rule: one finger alone at the object's width loads

@@ -9,6 +9,7 @@ import dataclasses
 import numpy as np
 
 from tegrasp_drake.control.taxel_contact import GraspContact
+from tegrasp_drake.rig.tactile_fingertip import PAD_THICKNESS
 from tegrasp_drake.rig.taxel_layout import PAD_LENGTH
 
 
@@ -154,6 +155,16 @@ def untouched_reach_m(pad_center_offset, object_width_m: float, stroke_m: float)
     openings = np.linspace(0.0, stroke_m, int(round(stroke_m / 0.001)) + 1)
     farthest = max(pad_center_offset(float(o)) for o in openings)
     return PAD_LENGTH / 2 + farthest - pad_center_offset(object_width_m) + object_width_m / 2
+
+
+def curled_touch(first_touch_opening_m: float, object_width_m: float) -> bool:
+    """Whether the close's first touch came at an opening [m] no pad lying flat on an object
+    object_width_m [m] across reaches: below that width less both pads' elastomer
+    (2 PAD_THICKNESS, each pressed through its whole depth). Narrower, the fingers are off
+    their pins: they curled past the object and their fingertips touch its far side, so the
+    taxel rows are not positions along the approach (docs/controller.md, "Curled fingertips
+    hook the object's far side"). False without a touch."""
+    return 0.0 <= first_touch_opening_m < object_width_m - 2.0 * PAD_THICKNESS
 
 
 def caged_behind_pads(*, first_touch_offset_m: float, opening_m: float,

@@ -11,9 +11,9 @@ from tegrasp_drake.control.finger_strike import (FINGERS, side_moment_nm, strike
                                                   struck_finger)
 from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Mode, Stage
 from tegrasp_drake.control.taxel_aware.contact_geometry import (
-    bracketed_object, caged_behind_pads, held_tilted, opposite_face, pushed_distance_m,
-    release_topples, remembered_faces, touched_beyond_pads, touched_face, touched_faces,
-    untouched_reach_m)
+    bracketed_object, caged_behind_pads, curled_touch, held_tilted, opposite_face,
+    pushed_distance_m, release_topples, remembered_faces, touched_beyond_pads, touched_face,
+    touched_faces, untouched_reach_m)
 from tegrasp_drake.control.taxel_aware.grip_settling import grip_settled
 from tegrasp_drake.control.taxel_aware.hands import FILM_STRIKE_HANDS
 from tegrasp_drake.control.taxel_aware.ra_onset import onset_finger
@@ -110,7 +110,10 @@ class ContactEstimate:
     (contact_geometry.untouched_reach_m); touched_before: ContactMemory.touched_before;
     strike_by_film: the strike is one film's RA onset (ContactEstimator's film strike);
     ra_onset_finger, ra_onset_opening_m: ContactMemory's; ra_onset_topples: the push still to
-    come from that opening would topple the object (contact_geometry.release_topples)."""
+    come from that opening would topple the object (contact_geometry.release_topples);
+    hooked_object_dx_m: in the close, when its first touch was a curl
+    (contact_geometry.curled_touch), where the hooked object's centre lies along the approach
+    from the pads' centres at its width [m] (ObjectGeometry.hooked_object_offset), else None."""
     shape: GraspContact
     sa_n: tuple
     contact: tuple
@@ -140,6 +143,7 @@ class ContactEstimate:
     ra_onset_finger: str = ""
     ra_onset_opening_m: float = -1.0
     ra_onset_topples: bool = False
+    hooked_object_dx_m: float | None = None
 
     @property
     def bracketed_width_m(self) -> float:
@@ -149,12 +153,16 @@ class ContactEstimate:
 
 @dataclasses.dataclass(frozen=True)
 class ObjectGeometry:
-    """The expected object and grasp [m], and the hand's pads' centres beyond G along the
-    approach at an opening (gripper_hands.pad_center_offset)."""
+    """The expected object and grasp [m], the hand's pads' centres beyond G along the
+    approach at an opening (gripper_hands.pad_center_offset), and where an object its curled
+    fingertips hook lies (gripper_hands.hooked_object_offset; None on a hand that cannot
+    curl)."""
     width_m: float
     height_m: float
     grasp_height_m: float
     pad_center_offset: typing.Callable[[float], float] = lambda opening_m: 0.0
+    hooked_object_offset: typing.Callable[[float, float, float], float | None] = (
+        lambda opening_m, contact_offset_m, object_width_m: None)
 
 
 class ContactEstimator:
@@ -234,7 +242,11 @@ class ContactEstimator:
             ra_onset_topples=release_topples(
                 pushed_distance_m(memory.ra_onset_opening_m, g.width_m),
                 grasp_height_m=g.grasp_height_m, object_width_m=g.width_m,
-                object_height_m=g.height_m))
+                object_height_m=g.height_m),
+            hooked_object_dx_m=(
+                g.hooked_object_offset(r.opening_m, shape.approach_offset_m, g.width_m)
+                if r.closing and (shape.left.touching or shape.right.touching)
+                and curled_touch(memory.first_touch_opening_m, g.width_m) else None))
         return memory, estimate
 
     def _ra_onset(self, memory: ContactMemory, r: ContactReading) -> ContactMemory:
@@ -308,6 +320,7 @@ def estimator_for_plan(config, plan, *, sa_rate_hz: float) -> ContactEstimator:
     """The ContactEstimator of taxel_aware `config` for the GraspPlan `plan`, its pads'
     taxels sampled at sa_rate_hz [Hz] (the scenario's tactile.sample_rate_hz)."""
     from tegrasp_drake.simulation.gripper_hands import gripper_hand
+    hand = gripper_hand(plan.gripper_model)
     return ContactEstimator(
         taxel_config=config.taxel_aware, taxel_contact_n=config.taxel_contact_n,
         match_confirm_window_s=match_confirm_window_s(sa_rate_hz, config.update_period_s),
@@ -315,4 +328,5 @@ def estimator_for_plan(config, plan, *, sa_rate_hz: float) -> ContactEstimator:
         geometry=ObjectGeometry(
             width_m=plan.object_width, height_m=plan.object_height,
             grasp_height_m=plan.grasp_height,
-            pad_center_offset=gripper_hand(plan.gripper_model).pad_center_offset))
+            pad_center_offset=hand.pad_center_offset,
+            hooked_object_offset=hand.hooked_object_offset))

@@ -8,6 +8,7 @@ from tegrasp_drake.control.taxel_aware.beyond_pads import BEYOND_PADS
 from tegrasp_drake.control.taxel_aware.bracketing import BRACKET_RECENTRE
 from tegrasp_drake.control.taxel_aware.caged import (CAGED, LOAD_TIMEOUT_CAGED,
                                                      REACH_TIMEOUT_CAGED)
+from tegrasp_drake.control.taxel_aware.curled_fingertips import CURLED_FINGERTIPS
 from tegrasp_drake.control.taxel_aware.finger_strike import FINGER_STRIKE
 from tegrasp_drake.control.taxel_aware.grip_settling import GRIP_SETTLING
 from tegrasp_drake.control.taxel_aware.moves import centring_shift
@@ -30,7 +31,7 @@ CENTRING_RE_REACH = ReReachMove(
 
 TAXEL_AWARE_TABLE = PAPER_TABLE.extended(
     "taxel_aware",
-    rules=(FINGER_STRIKE, APPROACH_CONTACT, RA_ONSET_ONE_FILM, BEYOND_PADS, OFF_CENTRE,
+    rules=(FINGER_STRIKE, APPROACH_CONTACT, RA_ONSET_ONE_FILM, CURLED_FINGERTIPS, BEYOND_PADS, OFF_CENTRE,
            TOUCH_CONFIRMED, ONE_SIDED_AT_WIDTH, BRACKET_RECENTRE, CLOSED_UNTOUCHED,
            REACH_TIMEOUT_BOTH_PADS,
            REACH_TIMEOUT_CAGED, LOAD_TIMEOUT_BOTH_PADS, LOAD_TIMEOUT_CAGED, HELD_TILTED,
