@@ -59,7 +59,7 @@ def register(subparsers) -> None:
     parser.add_argument("--overwrite", action="store_true",
                         help="replace an existing figure at --out (a file that is not a "
                              "figure of its format is never replaced)")
-    parser.set_defaults(func=run)
+    parser.set_defaults(func=run, usage_error=parser.error)
 
 
 def output_path(args) -> pathlib.Path:
@@ -108,11 +108,15 @@ def _plot_events(args, out) -> str:
     return str(plot_memorized_events(events, out))
 
 
+def _require_source(args, what: str) -> None:
+    """A usage error (exit 2) when `tegrasp plot WHAT` was given no LOG|RESULTS."""
+    if not args.source:
+        args.usage_error(f"`tegrasp plot {args.what}` needs LOG|RESULTS, {what}")
+
+
 def _plot_trial(args, out) -> str:
     from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
-    if not args.source:
-        raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a trial log "
-                         "(e.g. out/demo/trial.npz from `tegrasp demo`)")
+    _require_source(args, "a trial log (e.g. out/demo/trial.npz from `tegrasp demo`)")
     try:
         log = load_trial_log(args.source)
     except TrialLogError as e:
@@ -136,9 +140,7 @@ def _plot_trial(args, out) -> str:
 
 def _plot_sweep(args, out) -> str:
     from tegrasp_drake.sweep import load_records
-    if not args.source:
-        raise SystemExit(f"tegrasp: error: `tegrasp plot {args.what}` needs a sweep's results "
-                         "folder (e.g. analysis/results_seed0)")
+    _require_source(args, "a sweep's results folder (e.g. analysis/results_seed0)")
     if not pathlib.Path(args.source).is_dir():
         raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
                          f"({args.source} is not a folder; give the --out folder of "

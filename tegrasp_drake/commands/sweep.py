@@ -24,8 +24,10 @@ from tegrasp_drake.rig.files import folder_problem
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
+    BENCHMARK_WORKER_COUNTS,
     SchedulerLostError,
     SweepError,
+    benchmark_spec,
     benchmark_text,
     check_sweep_folder,
     run_benchmark,
@@ -51,6 +53,9 @@ from tegrasp_drake.rig.typed_yaml import ConfigError, set_option
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
 DEFAULT_OUT = "results/sweep"
+# Where `--benchmark` runs the sweep it times.
+BENCHMARK_RUNS = (f"{' and then '.join(map(str, BENCHMARK_WORKER_COUNTS))} worker(s), each "
+                  "into a temporary folder")
 
 EPILOG = """\
 examples:
@@ -105,7 +110,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "(trials, objects, markers, cost) and run nothing")
     parser.add_argument("--benchmark", action="store_true",
                         help="time the memorized sweep with 1 and then 2 workers, each "
-                             "into a temporary folder, and print wall times and speed-up")
+                             "into a temporary folder, and print wall times and speed-up "
+                             "(--workers, --out and the reports' options are refused)")
     parser.add_argument("--events", metavar="DIR", default=None,
                         help="memorized events folder (default: $TEGRASP_EVENTS_DIR or "
                         "~/.local/share/tegrasp/events, then the package's)")
@@ -388,10 +394,23 @@ def check_workers(args) -> None:
         raise OptionError(f"--workers {args.workers}: {problem}")
 
 
+def check_benchmark_options(args) -> None:
+    """OptionError naming the runner options --benchmark does not use (BENCHMARK_RUNS)."""
+    if not args.benchmark:
+        return
+    unused = [option for option, given in (
+        ("--scheduler", args.scheduler is not None), ("--workers", args.workers is not None),
+        ("--oversubscribe", args.oversubscribe), ("--out", args.out != DEFAULT_OUT),
+        ("--format", args.format != "png"), (CONFIRM_OPTION, args.confirm_trials is not None))
+        if given]
+    if unused:
+        raise OptionError(f"--benchmark times the local process pool on {BENCHMARK_RUNS} "
+                          f"and writes no reports: drop {', '.join(unused)}")
+
+
 def run(args) -> int:
     with refusals_said("sweep") as refused:
-        if args.benchmark and args.scheduler:  # before the scheduler is asked whether it answers
-            raise OptionError("--benchmark times the local process pool; drop --scheduler")
+        check_benchmark_options(args)  # before the scheduler is asked whether it answers
         check_runner_arguments(args, "sweep")
         check_spec_options(args)
         with scheduler_connection(args, "sweep") as scheduler:
@@ -412,9 +431,12 @@ def run(args) -> int:
             if args.logs:
                 _check_logs_folder(args.logs, args.out)
                 trial_function = bound_arguments(trial_function, log_dir=args.logs)
+            if args.dry_run and args.benchmark:
+                print(plan_text(benchmark_spec(spec)))
+                print(f"  the benchmark runs it on {BENCHMARK_RUNS}")
+                return 0
             if args.dry_run:  # refused as the real run would refuse it, before any trial
-                left, corrupt, in_use = (trial_count(spec), {}, False) if args.benchmark else \
-                    check_sweep_folder(spec, trial_function, args.out)
+                left, corrupt, in_use = check_sweep_folder(spec, trial_function, args.out)
                 print(plan_text(spec, left=left, corrupt=corrupt, out=args.out))
                 if in_use:
                     print(f"tegrasp: warning: --out {args.out} is in use: another run (a "

@@ -7,6 +7,7 @@
       tactile: {port: /dev/ttyACM0, calibration_file: pads.yaml}"""
 
 import dataclasses
+import ipaddress
 import os
 import stat
 import sys
@@ -29,7 +30,7 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_ins
                                           loaded_with_overrides, read_yaml_file,
                                           require_fields, require_mapping)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
-from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.echo import shorten, shown
 
 # LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
 LCM_URL_VARIABLE = "LCM_DEFAULT_URL"
@@ -124,6 +125,12 @@ SHARED_LCM_PROVIDERS = ("udpm", "tcpq")
 IN_PROCESS_LCM_PROVIDERS = ("memq",)
 
 
+# The options each provider takes in a URL's query (LCM's lcm_udpm.c, lcm_tcpq.c and
+# lcm_memq.c): LCM warns of another on stderr and runs without it.
+LCM_URL_OPTIONS = {"udpm": ("ttl", "recv_buf_size"), "tcpq": (), "memq": ()}
+MULTICAST_TTL_RANGE = (0, 255)  # IP_MULTICAST_TTL, ip(7)
+
+
 def lcm_provider(url: str) -> str:
     """The provider `url` names (the text before "://"), or "" when it names none."""
     return url.split("://", 1)[0] if "://" in url else ""
@@ -144,6 +151,9 @@ def lcm_url_problem(url: str) -> str | None:
                 f"{_providers_text(SHARED_LCM_PROVIDERS)} (and "
                 f"{_providers_text(IN_PROCESS_LCM_PROVIDERS)} inside one process), e.g. "
                 "udpm://239.255.76.67:7667?ttl=0")
+    problem = _lcm_url_text_problem(url, provider)
+    if problem:
+        return f"{problem}; expected e.g. udpm://239.255.76.67:7667?ttl=0"
     import lcm
     with tempfile.TemporaryFile() as captured:
         sys.stderr.flush()
@@ -171,6 +181,48 @@ def lcm_url_problem(url: str) -> str | None:
     reason = said.splitlines()[-1].split(" -- ", 1)[-1].strip() if said else ""
     return (f"cannot be opened by LCM ({reason + '; ' if reason else ''}expected e.g. "
             "udpm://239.255.76.67:7667?ttl=0)")
+
+
+def _lcm_url_text_problem(url: str, provider: str) -> str | None:
+    """What LCM would ignore or misread in `url`, a URL of `provider`, from its text: a query
+    option the provider does not take (LCM_URL_OPTIONS) or given twice, a ttl outside
+    MULTICAST_TTL_RANGE, and for udpm:// an address that is not a multicast IPv4 address
+    with an optional port from 1 to 65535."""
+    address, _, query = url.split("://", 1)[1].partition("?")
+    accepted, seen = LCM_URL_OPTIONS[provider], set()
+    for option in query.split("&") if query else ():
+        key, _, value = option.partition("=")
+        if key not in accepted:
+            takes = f"it takes {', '.join(accepted)}" if accepted else "it takes none"
+            return (f"has the option {shown(key)}, which LCM's {provider}:// does not "
+                    f"take ({takes})")
+        if key in seen:
+            return f"gives the option {key} twice"
+        seen.add(key)
+        if key == "ttl" and _decimal(value) and not _decimal(value, MULTICAST_TTL_RANGE):
+            return (f"has ttl={shorten(value)}; a multicast TTL lies in "
+                    f"[{MULTICAST_TTL_RANGE[0]}, {MULTICAST_TTL_RANGE[1]}]")
+    if provider != "udpm":
+        return None
+    host, colon, port = address.partition(":")
+    try:
+        multicast = ipaddress.IPv4Address(host).is_multicast
+    except ValueError:
+        multicast = False
+    if not multicast:
+        return (f"has the address {shown(host)}, which is not a multicast IPv4 "
+                "address (224.0.0.0 to 239.255.255.255)")
+    if colon and not _decimal(port, (1, 65535)):
+        return f"has the port {shown(port)}, which is not a number from 1 to 65535"
+    return None
+
+
+def _decimal(text: str, bounds: tuple[int, int] | None = None) -> bool:
+    """Whether `text` is ASCII digits (of a number within `bounds`, when given)."""
+    if not (text.isascii() and text.isdecimal()):
+        return False
+    return bounds is None or (len(text) <= len(str(bounds[1])) and
+                              bounds[0] <= int(text) <= bounds[1])
 
 
 def _provider_named(provider: str) -> str:

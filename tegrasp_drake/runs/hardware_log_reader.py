@@ -437,8 +437,9 @@ def _plausible_tactile(messages: list, taxel_range: tuple[float, float]) -> tupl
 
 
 def check_run_info(info: lcmt_tegrasp_run_info, path) -> None:
-    """RunLogError naming the first field of a run's TEGRASP_RUN_INFO that holds what
-    hardware_run.run_info_message never writes (its scenario is checked where it is read)."""
+    """RunLogError naming the first field of a run's TEGRASP_RUN_INFO that the replay needs
+    and that holds what hardware_run.run_info_message never writes (its scenario and its
+    versions are checked where they are read: damage, not a refusal)."""
     def refuse(field: str, problem: str):
         raise RunLogError(f"run log '{path}': its TEGRASP_RUN_INFO field '{field}' {problem}: "
                           "the log is damaged or was not written by `tegrasp hardware`")
@@ -449,14 +450,33 @@ def check_run_info(info: lcmt_tegrasp_run_info, path) -> None:
     problem = object_name_problem(info.object_name)
     if problem:
         refuse("object_name", problem)
+
+
+def _not_utf8_problem(text: str) -> str | None:
+    """Words for decoded text that held bytes that are not UTF-8 (the generated decoder puts
+    U+FFFD for them), naming the first one's byte, else None."""
+    if REPLACEMENT_CHARACTER not in text:
+        return None
+    # the characters before the first U+FFFD decoded as they were written
+    return f"is not UTF-8 at byte {len(text[:text.index(REPLACEMENT_CHARACTER)].encode())} " \
+           "of its text"
+
+
+def _versions_problem(info: lcmt_tegrasp_run_info) -> str | None:
+    """What is wrong with a run's TEGRASP_RUN_INFO versions_json (provenance only, which the
+    replay does not use), in words, else None."""
+    problem = _not_utf8_problem(info.versions_json)
+    if problem:
+        return problem
     try:
         versions = json.loads(info.versions_json)
     except ValueError:
         versions = None
     if not (isinstance(versions, dict)
             and all(isinstance(v, str) for v in versions.values())):
-        refuse("versions_json", f"must be a JSON object of package versions, got "
-                                f"{shorten(repr(info.versions_json))}")
+        return (f"is not a JSON object of package versions "
+                f"({shorten(one_line(repr(info.versions_json)))})")
+    return None
 
 
 def logged_scenario(info: lcmt_tegrasp_run_info | None):
@@ -467,10 +487,9 @@ def logged_scenario(info: lcmt_tegrasp_run_info | None):
     if info is None or not info.scenario_yaml:
         return None, None
     text = info.scenario_yaml
-    if REPLACEMENT_CHARACTER in text:
-        # the characters before the first U+FFFD decoded as they were written
-        byte = len(text[:text.index(REPLACEMENT_CHARACTER)].encode("utf-8"))
-        return None, f"is not UTF-8 at byte {byte} of its text"
+    problem = _not_utf8_problem(text)
+    if problem:
+        return None, problem
     try:
         return scenario_from_yaml(text, "its scenario_yaml"), None
     except ConfigError as e:
@@ -550,6 +569,10 @@ def read_run_log(path) -> RunLog:
     scenario_problem = None
     if run_info is not None:
         check_run_info(run_info, path)
+        problem = _versions_problem(run_info)
+        if problem:
+            damage.append(f"its {RUN_INFO_CHANNEL} field 'versions_json' {problem} (corrupt "
+                          "bytes); the run's package versions are unknown")
         scenario, scenario_problem = logged_scenario(run_info)
         if scenario_problem:
             damage.append(

@@ -31,8 +31,9 @@ from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DEFAULT_COLOR, FINGER_CL
                                        ObjectConfig, object_problem)
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.unset_fields import without_unset_fields
-from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_fields,
-                                          load_typed, loaded_with_overrides, parse_yaml,
+from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, assignment_key,
+                                          check_fields, keys_overlap, load_typed,
+                                          loaded_with_overrides, parse_yaml,
                                           read_yaml_file_cached, require, require_mapping)
 from tegrasp_drake.simulation.capacitive_taxels import ad7147_frame_rate_hz, frame_rate_matches
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
@@ -534,10 +535,22 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
                           f"{type(data).__name__} {data!r}")
     for assignment in overrides:
         apply_override(data, assignment)
+    _refuse_other_controller_name(data, overrides, controller)
     return loaded_with_overrides(
         lambda source: _checked_scenario(data, source, controller=controller,
                                          allow_long=allow_long, on_ignored=on_ignored),
         f"{path} [{name}]", overrides)
+
+
+def _refuse_other_controller_name(data: dict, overrides, controller: str | None) -> None:
+    """ConfigError when `controller` is given and the overrides set controller.name to
+    another controller: neither may silently win."""
+    named = [a for a in overrides if keys_overlap(assignment_key(a), "controller.name")]
+    section = data.get("controller")
+    name = section.get("name") if isinstance(section, dict) else None
+    if controller is not None and named and name is not None and name != controller:
+        raise ConfigError(f"--controller {controller} and --set {named[-1]} select different "
+                          "controllers; give one of them")
 
 
 _SCENARIO_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_.-]*")

@@ -773,13 +773,21 @@ class BenchmarkRun:
     unwritten_log: str | None = None  # as SweepSummary's: this run stopped there
 
 
-def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=(1, 2),
+BENCHMARK_WORKER_COUNTS = (1, 2)
+
+
+def benchmark_spec(spec: SweepSpec) -> SweepSpec:
+    """The sweep a benchmark of `spec` times: its memorized controller's trials."""
+    return dataclasses.replace(spec, controllers=("memorized",))
+
+
+def run_benchmark(spec: SweepSpec, trial_function, *, worker_counts=BENCHMARK_WORKER_COUNTS,
                   progress: bool = True) -> tuple[list[BenchmarkRun], bool]:
     """Runs the memorized sweep of `spec` once per worker count, each into a fresh temporary
     folder, timed whole (pool start-up included); returns the runs and whether every result
     was the same in all (TIMING_FIELDS aside): the worker count must not change a result.
     A run that could not write a trial's log copy (SweepSummary.unwritten_log) is the last."""
-    spec = dataclasses.replace(spec, controllers=("memorized",))
+    spec = benchmark_spec(spec)
     runs, results = [], []
     for workers in worker_counts:
         with tempfile.TemporaryDirectory(prefix="tegrasp-benchmark-") as folder:

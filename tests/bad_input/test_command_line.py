@@ -151,6 +151,25 @@ def test_a_probe_stops_with_one_line_and_loses_nothing(make, argv, expected, tmp
     assert not (tmp_path / "hacked").exists()
 
 
+@pytest.mark.parametrize("command", [["trial"], ["hardware", "--config", "hw.yaml",
+                                                 "--log", "run.lcmlog"]])
+def test_controller_and_another_set_controller_name_are_refused_naming_both(
+        command, tmp_path, monkeypatch, capfd):
+    make = _write("hw.yaml", hardware_config_to_yaml(HardwareStationConfig()))
+    argv = command + ["--controller", "open_loop", "--set", "controller.name=heuristic"]
+    _, text = assert_probe_refused(make, argv, ["--controller open_loop and --set "
+                                                "controller.name=heuristic select different "
+                                                "controllers; give one of them"],
+                                   tmp_path, monkeypatch, capfd)
+    code, _ = run_cli(argv, capfd)
+    assert code == 1
+
+
+def test_controller_and_the_same_set_controller_name_agree():
+    scenario = T.LoadScenario(overrides=["controller.name=open_loop"], controller="open_loop")
+    assert scenario.controller.name == "open_loop"
+
+
 # --- the command line's error boundary --------------------------------------------------------
 
 def test_an_unforeseen_exception_is_one_line_with_its_traceback_in_a_file(monkeypatch, capfd):

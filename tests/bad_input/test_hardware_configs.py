@@ -29,7 +29,7 @@ from tests.bad_input.probes import assert_one_line_error, refusal, run_cli
     ("tactile: {max_backlog: -3}\n", "field 'tactile.max_backlog' must be zero or a positive"),
     ("watchdog: {arm_timeout: 0}\n", "field 'watchdog.arm_timeout' must be positive"),
     ("arm: {lcm_url: 'udpm://239.255.76.67:99999?ttl=0'}\n",
-     "field 'arm.lcm_url' cannot be opened by LCM"),
+     "field 'arm.lcm_url' has the port '99999', which is not a number from 1 to 65535"),
     ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' is not an LCM bus URL"),
     ("watchdog: {arm_timeout: 0.05\n", "not valid YAML"),
     ("scheduling: deadline\n", "field 'scheduling' must be one of 'fifo', 'nice', 'normal'"),

@@ -28,11 +28,8 @@ from tests.runs.test_hardware_log_reader import EVENTS, GRASP, logged_transition
 
 
 # Rule: a run log's TEGRASP_RUN_INFO is checked as a whole when it is read: a controller
-# the package lacks, an object name no folder can have or versions that are not JSON are
-# refused naming the field, as a bad scenario in it is.
+# the package lacks or an object name no folder can have is refused naming the field.
 @pytest.mark.parametrize("field, value", [("controller", "bogus"),
-                                          ("versions_json", "{not json"),
-                                          ("versions_json", "[1, 2]"),
                                           ("object_name", "../../etc")])
 def test_a_run_info_field_the_run_never_writes_is_refused(tmp_path, field, value):
     import lcm
@@ -280,6 +277,41 @@ def test_a_run_info_scenario_with_corrupt_bytes_is_damage_and_the_log_replays(
     assert "object box" in text and "fired at" in text, text
     warnings = [line for line in text.splitlines() if line.startswith("tegrasp: warning:")]
     assert len(warnings) == 1 and words in warnings[0], text
+
+
+def _run_info_versions_changed(path, change):
+    """The log at `path` with its TEGRASP_RUN_INFO's versions_json bytes passed through
+    change(bytearray), in place."""
+    data = bytearray(path.read_bytes())
+    text = VERSIONS_JSON.encode()
+    start = data.find(text)
+    assert start > 0
+    data[start:start + len(text)] = change(bytearray(text))
+    path.write_bytes(bytes(data))
+
+
+VERSIONS_JSON = '{"drake": "1.51.1", "numpy": "2.4.6"}'
+
+
+# Rule: a TEGRASP_RUN_INFO whose versions (provenance only) corrupt bytes changed is damage,
+# named (not UTF-8 at which byte, or not a JSON object), never a refusal of the whole log.
+@pytest.mark.parametrize("change, words", [
+    (_flipped(19), "is not UTF-8 at byte 19 of its text"),  # the space before "numpy"
+    (_flipped(0), "is not UTF-8 at byte 0 of its text"),
+    (lambda text: text.replace(b"{", b"["), "is not a JSON object of package versions"),
+])
+def test_run_info_versions_with_corrupt_bytes_are_damage_and_the_log_replays(
+        tmp_path, capfd, change, words):
+    path = _run_log(tmp_path / "run.lcmlog", [_run_info(versions_json=VERSIONS_JSON)])
+    _run_info_versions_changed(path, change)
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert f"{RUN_INFO_CHANNEL} field 'versions_json' {words}" in damage[0], damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
+    assert "\ufffd" not in text, text
+    assert "object box" in text and "fired at" in text, text
 
 
 # Rule: every error line shows a replacement character U+FFFD (bytes a decoder could not

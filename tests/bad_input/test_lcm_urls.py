@@ -40,6 +40,46 @@ def test_an_in_process_lcm_bus_is_refused_by_the_commands(tmp_path, monkeypatch,
         assert word in text, text
 
 
+ACCEPTED_UDPM = "which LCM's udpm:// does not take (it takes ttl, recv_buf_size)"
+
+
+# Rule: an LCM URL's text is checked as LCM's providers read it: a query option the provider
+# does not take (LCM would warn on stderr and run without it), an option given twice, a ttl
+# no multicast socket takes, or a udpm:// address that is not multicast or a port that is not
+# one is refused naming it, in every command that takes a URL (exit 1).
+@pytest.mark.parametrize("url, words", [
+    ("udpm://239.255.76.99:7699?tll=1", ["has the option 'tll'", ACCEPTED_UDPM]),
+    ("udpm://239.255.76.99:7699?ttl=0&x=1", ["has the option 'x'", ACCEPTED_UDPM]),
+    ("udpm://239.255.76.99:7699?ttl=0&ttl=1", ["gives the option ttl twice"]),
+    ("udpm://239.255.76.99:7699?ttl=300", ["has ttl=300; a multicast TTL lies in [0, 255]"]),
+    ("udpm://10.0.0.1:7699", ["has the address '10.0.0.1', which is not a multicast IPv4"]),
+    ("udpm://239.255.76.99:7699/", ["has the port '7699/', which is not a number from 1"]),
+    ("udpm://239.255.76.99:0", ["has the port '0'"]),
+    ("tcpq://127.0.0.1:7700?ttl=0", ["has the option 'ttl', which LCM's tcpq:// does not take "
+                                     "(it takes none)"]),
+])
+@pytest.mark.parametrize("option", ["--lcm-url", "arm.lcm_url"])
+def test_an_lcm_url_option_or_address_lcm_would_not_take_is_refused_naming_it(
+        tmp_path, monkeypatch, capfd, url, words, option):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    argv = (["emulate", "jaco", "--lcm-url", url] if option == "--lcm-url" else
+            ["hardware", "--config", "hw.yaml", "--config-set", f"arm.lcm_url={url}"])
+    code, text = run_cli(argv, capfd)
+    assert code == 1, text
+    named = f"--lcm-url {url!r}" if option == "--lcm-url" else "field 'arm.lcm_url'"
+    assert_one_line_error(code, text, "tegrasp: error:", named, *words)
+    assert "lcm_udpm.c" not in text, text
+
+
+def test_an_lcm_url_lcm_takes_is_accepted():
+    from tegrasp_drake.hardware.config import lcm_url_problem
+    for url in ("udpm://239.255.76.67:7667?ttl=1&recv_buf_size=2097152",
+                "udpm://239.255.76.67:7667", "udpm://239.255.76.67", "memq://"):
+        assert lcm_url_problem(url) is None, url
+
+
 # Rule: an LCM URL that cannot be used is named where it came from: the LCM_DEFAULT_URL
 # environment variable when it gave the default (no field the user wrote), else the field.
 @pytest.mark.parametrize("command", [

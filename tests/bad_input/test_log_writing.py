@@ -242,7 +242,7 @@ def test_a_sweep_whose_logs_cannot_be_written_records_the_result_and_stops(tmp_p
 def test_a_benchmark_whose_logs_cannot_be_written_says_so_once(tmp_path, capsys):
     """--benchmark --logs on a full disk: one error line naming --logs and the reason, exit 1;
     the benchmark stops at the first run that met it."""
-    code = cli.main([*_SWEEP[:-2], "--benchmark", "--logs", str(tmp_path / "logs"),
+    code = cli.main([*_SWEEP[:-4], "--benchmark", "--logs", str(tmp_path / "logs"),
                      "--trial-function", "tests.fake_trials:full_disk_fake_trial"])
     out, error = capsys.readouterr()
     assert code == 1, error

@@ -49,14 +49,25 @@ def test_plot_format_names_the_default_file(tmp_path, monkeypatch, capsys):
     (["table1", str(RESULTS), "--out", "figure.png", "--format", "pdf"],
      "is a .png file but --format is pdf"),
     (["latency", "no/such/folder"], "no trial records under no/such/folder/trials"),
-    (["table1"], "needs a sweep's results folder"),
-    (["avoid"], "needs a trial log"),
 ])
 def test_bad_input_is_one_line(arguments, message, capsys):
     with pytest.raises(SystemExit) as exit_info:
         main(["plot"] + arguments)
     assert message in str(exit_info.value)
     assert "\n" not in str(exit_info.value)
+
+
+@pytest.mark.parametrize("what, needed", [
+    ("table1", "a sweep's results folder"), ("latency", "a sweep's results folder"),
+    ("signals", "a trial log"), ("trial", "a trial log"), ("avoid", "a trial log"),
+])
+def test_a_missing_log_or_results_is_a_usage_error(what, needed, capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        main(["plot", what])
+    assert exit_info.value.code == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"tegrasp plot: error: `tegrasp plot {what}` needs LOG|RESULTS, {needed}")
+    assert err.endswith("(see tegrasp plot --help)\n") and err.count("\n") == 1
 
 
 def test_avoid_on_a_trial_without_a_hit_names_the_scenario_that_has_one(tmp_path):

@@ -295,16 +295,41 @@ def test_a_missing_trial_function_is_reported(tmp_path, capsys):
     assert not out.exists()
 
 
-def test_benchmark_prints_wall_times_and_speed_up(tmp_path, capsys):
+def test_benchmark_prints_wall_times_and_speed_up(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
     code = command.main(["--benchmark", "--objects", "box", "--attempts", "1",
-                         "--out", str(tmp_path / "unused"), "--no-progress",
-                         "--trial-function", "tests.fake_trials:slow_fake_trial"])
+                         "--no-progress", "--trial-function", "tests.fake_trials:slow_fake_trial"])
     assert code == 0
     lines = capsys.readouterr().out.splitlines()
     assert "1 worker(s): 9 trials" in lines[1] and "speed-up 1.00x" in lines[1]
     assert "2 worker(s): 9 trials" in lines[2] and "speed-up" in lines[2]
     assert lines[3].endswith("results identical across worker counts: yes")
-    assert not (tmp_path / "unused").exists()
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("arguments, unused", [
+    (["--workers", "1", "--out", "swb"], "drop --workers, --out"),
+    (["--oversubscribe", "--format", "svg"], "drop --oversubscribe, --format"),
+])
+def test_benchmark_refuses_the_runner_options_it_does_not_use(tmp_path, monkeypatch, capsys,
+                                                               arguments, unused):
+    monkeypatch.chdir(tmp_path)
+    assert command.main(["--benchmark", *arguments, *FAKE]) == 1
+    error = capsys.readouterr().err
+    assert error.count("\n") == 1 and "--benchmark times the local process pool" in error
+    assert unused in error
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_benchmark_dry_run_prints_the_plan_of_the_sweep_it_times(tmp_path, monkeypatch,
+                                                                 capsys):
+    monkeypatch.chdir(tmp_path)
+    assert command.main(["--benchmark", "--dry-run", "--objects", "box", *FAKE]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].startswith("sweep plan (nothing run): 27 trials")
+    assert lines[2] == "  controllers: memorized"
+    assert lines[-1] == ("  the benchmark runs it on 1 and then 2 worker(s), each into a "
+                         "temporary folder")
 
 
 def test_statistics_json_is_valid(tmp_path):
