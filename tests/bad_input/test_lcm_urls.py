@@ -64,9 +64,15 @@ def test_an_lcm_url_option_or_address_lcm_would_not_take_is_refused_naming_it(
     from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
     monkeypatch.chdir(tmp_path)
     (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
-    argv = (["emulate", "jaco", "--lcm-url", url] if option == "--lcm-url" else
-            ["hardware", "--config", "hw.yaml", "--config-set", f"arm.lcm_url={url}"])
-    code, text = run_cli(argv, capfd)
+    if option == "--lcm-url":
+        # in a process of its own: an emulator that took the URL would run until stopped
+        run = subprocess.run([sys.executable, "-m", "tegrasp_drake", "emulate", "jaco",
+                              "--lcm-url", url], cwd=tmp_path, capture_output=True, text=True,
+                             timeout=120)
+        code, text = run.returncode, run.stderr + run.stdout
+    else:
+        code, text = run_cli(["hardware", "--config", "hw.yaml", "--config-set",
+                              f"arm.lcm_url={url}"], capfd)
     assert code == 1, text
     named = f"--lcm-url {url!r}" if option == "--lcm-url" else "field 'arm.lcm_url'"
     assert_one_line_error(code, text, "tegrasp: error:", named, *words)
