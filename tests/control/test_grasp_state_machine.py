@@ -16,7 +16,7 @@ from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
 from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
 from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
-from tegrasp_drake.control.taxel_aware.hands import PRISMATIC_ONLY
+from tegrasp_drake.control.taxel_aware.hands import LINKAGE_ONLY, PRISMATIC_ONLY
 from tegrasp_drake.scenario.scenario import LoadScenario, grasp_plan
 from tegrasp_drake.simulation.pad_vibration_sensor import (VibrationSensorConfig,
                                                            ra_noise_std_mps2)
@@ -321,8 +321,13 @@ def test_the_machine_runs_only_the_rules_kept_to_its_hand():
     prismatic_only = {item.name for item in (*TAXEL_AWARE_TABLE.all_rules(),
                                              *TAXEL_AWARE_TABLE.all_guards())
                       if item.hands == PRISMATIC_ONLY}
+    linkage_only = {item.name for item in TAXEL_AWARE_TABLE.all_rules()
+                    if item.hands == LINKAGE_ONLY}
     assert {"caged", "tipping_guard", "approach_contact"} <= prismatic_only
+    assert {"curled_fingertips"} <= linkage_only
     linkage = taxel_aware_machine("linkage").rule_table()
     assert not names(linkage) & prismatic_only
     assert names(linkage) | prismatic_only == names(TAXEL_AWARE_TABLE)
-    assert names(taxel_aware_machine("prismatic").rule_table()) == names(TAXEL_AWARE_TABLE)
+    prismatic = taxel_aware_machine("prismatic").rule_table()
+    assert not names(prismatic) & linkage_only
+    assert names(prismatic) | linkage_only == names(TAXEL_AWARE_TABLE)

@@ -11,7 +11,7 @@ from tegrasp_drake.control.grasp_modes import Mode, Trigger
 from tegrasp_drake.control.rule_actions import ReReach, decide, re_reach_allowed
 from tegrasp_drake.control.rule_engine import Rule
 from tegrasp_drake.control.taxel_aware.contact_geometry import Shift
-from tegrasp_drake.robotiq.hand_models import LINKAGE
+from tegrasp_drake.control.taxel_aware.hands import LINKAGE_ONLY
 
 
 def hooked(situation) -> bool:
@@ -32,4 +32,4 @@ CURLED_FINGERTIPS = Rule(
     when="the close's first touch at an opening below the object's width less both pads' "
     "elastomer (fingers curled past it); Re-Reaches left",
     then="ReReach(along the approach to the object's centre by the linkage's closed form)",
-    hands=(LINKAGE,))
+    hands=LINKAGE_ONLY)
