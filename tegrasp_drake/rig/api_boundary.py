@@ -181,7 +181,8 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
 
 def _mismatch(where: str, value, hint) -> tuple:
     """(where, hint, value) of what in `value` is not of `hint`: the first wrong item of a
-    list or tuple of the hint's kind (`overrides[0]`), else the value itself."""
+    list or tuple of the hint's kind (`overrides[0]`), or of a mapping's under a key of the
+    right type (`window_states['sa']`), else the value itself."""
     members = typing.get_args(hint) if typing.get_origin(hint) in (
         typing.Union, types.UnionType) else (hint,)
     for member in members:
@@ -193,6 +194,11 @@ def _mismatch(where: str, value, hint) -> tuple:
             for k, item in enumerate(value):
                 if not _matches(item, arguments[0]):
                     return _mismatch(f"{where}[{k}]", item, arguments[0])
+        if (isinstance(value, collections.abc.Mapping) and isinstance(origin, type)
+                and issubclass(origin, collections.abc.Mapping) and len(arguments) == 2):
+            for key, item in value.items():
+                if _matches(key, arguments[0]) and not _matches(item, arguments[1]):
+                    return _mismatch(f"{where}[{shown(key)}]", item, arguments[1])
     return where, hint, value
 
 

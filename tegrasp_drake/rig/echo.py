@@ -1,7 +1,11 @@
 """Values as a message echoes them: the one echo of every value a user gave that an error, a
 warning or a usage message repeats. A value pasted by mistake is cut to ECHO_CHARS, so that no
-message runs pages long, and the echo never raises, so that no message can fail to be made."""
+message runs pages long, and the echo never raises, so that no message can fail to be made.
+A byte a path or an environment value could not decode is shown as that byte (`'/tmp/x\\xff'`),
+not as the surrogate Python holds it by (`\\udcff`)."""
 
+import os
+import re
 import sys
 
 # How many characters of a value a message repeats.
@@ -15,6 +19,23 @@ def shorten(text: str, limit: int = ECHO_CHARS) -> str:
     return f"{text[:limit]}... ({len(text)} characters)"
 
 
+# A byte os.fsdecode could not decode, held as a surrogate (\udc80-\udcff): raw, and as repr
+# writes it (not after an escaped backslash: `\\udcff` is the text a user typed).
+_UNDECODED = re.compile("[\udc80-\udcff]")
+_UNDECODED_REPR = re.compile(r"(?<!\\)((?:\\\\)*)\\udc([89a-f][0-9a-f])")
+
+
+def undecoded_as_bytes(text: str) -> str:
+    """`text` with each byte a path or an environment value could not decode written as a
+    bytes repr writes it (os.fsencode: `/tmp/x\\xff`); every error line the user reads."""
+    return _UNDECODED.sub(lambda m: repr(os.fsencode(m.group()))[2:-1], text)
+
+
+def _repr_bytes(text: str) -> str:
+    """A repr's `\\udcff` (an undecoded byte) as the byte's `\\xff`."""
+    return _UNDECODED_REPR.sub(r"\1\\x\2", text)
+
+
 def shown(value) -> str:
     """`value` as a message echoes it, cut to ECHO_CHARS: a number an option was given as the
     user typed it (number_text.TypedNumber: `600.0001`, not 600), a text quoted, an integer
@@ -25,10 +46,10 @@ def shown(value) -> str:
     if isinstance(typed, str):
         return shorten(typed)
     if isinstance(value, str):
-        return repr(shorten(value))
+        return _repr_bytes(repr(shorten(value)))
     if isinstance(value, int) and abs(value) > sys.float_info.max:
         return f"<an integer of {integer_digits(value)} digits>"
     try:
-        return shorten(repr(value))
+        return _repr_bytes(shorten(repr(value)))
     except Exception:  # any repr may fail (a huge int inside a list); the message must not
         return f"<a {type(value).__name__} that cannot be written as text>"

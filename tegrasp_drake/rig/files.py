@@ -662,9 +662,11 @@ REPLACEMENT_CHARACTER = "\ufffd"
 def one_line(text: str) -> str:
     """`text` as one plain line: characters that are not printable (line breaks, ESC, ...) and
     the replacement character U+FFFD shown escaped as Python would (\\n, \\x1b, \\u2028,
-    \\ufffd)."""
+    \\ufffd); a byte a path could not decode as the byte (\\xff: echo.undecoded_as_bytes)."""
     if text.isprintable() and REPLACEMENT_CHARACTER not in text:
         return text
+    from tegrasp_drake.rig.echo import undecoded_as_bytes
+    text = undecoded_as_bytes(text)
     return "".join(
         ch if (ch.isprintable() and ch != REPLACEMENT_CHARACTER) or ch == " " else
         _ESCAPES.get(ch) or ch.encode("unicode_escape").decode("ascii") for ch in text)

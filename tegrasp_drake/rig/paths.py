@@ -16,6 +16,8 @@ import pathlib
 
 from pydrake.multibody.parsing import Parser
 
+from tegrasp_drake.rig.echo import shown
+
 PACKAGE_NAME = "tegrasp"  # models are reachable as package://tegrasp/...
 PACKAGE_DIR = pathlib.Path(__file__).resolve().parents[1]  # tegrasp_drake/ (this file: rig/)
 
@@ -64,7 +66,7 @@ def _user_events_choice() -> tuple[pathlib.Path, str, tuple[pathlib.Path, str] |
     chosen = os.environ.get(EVENTS_ENV, "").strip()
     if chosen:
         folder = pathlib.Path(chosen).expanduser()
-        named = f"{EVENTS_ENV}={chosen!r}"
+        named = f"{EVENTS_ENV}={shown(chosen)}"
         _check_folder_path(folder, named, "an events folder")
         return folder, named, (folder,
                                "your events folder (`tegrasp record-events` makes it)")
@@ -83,7 +85,7 @@ def _user_events_choice() -> tuple[pathlib.Path, str, tuple[pathlib.Path, str] |
     folder = base / "tegrasp" / "events"
     if not data_home:
         return folder, f"the default events folder {folder}", None
-    named = f"XDG_DATA_HOME={data_home!r} (events in {folder})"
+    named = f"XDG_DATA_HOME={shown(data_home)} (events in {folder})"
     _check_folder_path(folder, named, "your data folder")
     return folder, named, None
 

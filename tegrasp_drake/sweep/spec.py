@@ -21,7 +21,7 @@ from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CO
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.ranges import number_problem, real_number
-from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
                                           keys_overlap)
 
@@ -368,8 +368,9 @@ def _check_names_in(names, known, field_name, kind, fail):
     for name in names:
         if name not in known:
             fail(field_name, f"unknown {kind} {name!r}; known: {', '.join(known)}")
-    if len(set(names)) != len(names):
-        fail(field_name, f"names a {kind} twice: {list(names)}")
+    repeated = next((name for k, name in enumerate(names) if name in names[:k]), None)
+    if repeated is not None:
+        fail(field_name, f"lists {shown(repeated)} twice; list each {kind} once")
 
 
 def _check_user_object(name, config, fail):

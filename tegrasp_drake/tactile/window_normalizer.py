@@ -9,6 +9,8 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.api_boundary import public_api
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
+from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.number_text import count_text, number_text
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.tactile.read_batch import (AddHeldSampleRegister, batch_first_sample,
                                               batch_update_offset, samples_per_read)
@@ -51,6 +53,41 @@ class RateWindow:
     before_read: bool = False  # the samples are a read batch (read_batch.py), not a block
 
 
+def check_window_states(window_states: Mapping[str, np.ndarray], sizes: dict[str, int]) -> None:
+    """ValueError naming what in a WindowNormalizer's `window_states` is not one 1-D array of
+    numbers per rate group that starts with the group's empty window (`sizes`: {group name:
+    entries of its window, all zero}), and saying what was given."""
+    where = "WindowNormalizer: argument 'window_states'"
+    unknown = [key for key in window_states if key not in sizes]
+    missing = [key for key in sizes if key not in window_states]
+    if unknown or missing:
+        wrong = ([f"has unknown {_keys(unknown)}"] if unknown else []) + (
+            [f"lacks {_keys(missing)}"] if missing else [])
+        raise ValueError(f"{where} {' and '.join(wrong)}; give one initial state per rate "
+                         f"group of the config, keyed {', '.join(map(shown, sizes))}")
+    for name, size in sizes.items():
+        state, at = window_states[name], f"{where[:-1]}[{shown(name)}]'"
+        if state.dtype.kind not in "biuf":
+            raise ValueError(f"{at} must be an array of numbers, got an array of dtype "
+                             f"{state.dtype}")
+        if state.ndim != 1:
+            raise ValueError(f"{at} must be a 1-D array (an empty window of {size} zeros, then "
+                             f"the subclass's own state), got a {state.ndim}-D array of "
+                             f"shape {state.shape}")
+        if len(state) < size:
+            raise ValueError(f"{at} must start with an empty window of {size} zeros, got "
+                             f"{count_text(len(state), 'number')}")
+        filled = np.flatnonzero(state[:size])  # NaN is nonzero
+        if len(filled):
+            raise ValueError(f"{at} must start with an empty window of {size} zeros, got "
+                             f"{number_text(float(state[filled[0]]))} at entry {filled[0]}")
+
+
+def _keys(names: list[str]) -> str:
+    """'key 'x'' or 'keys 'x', 'y'', as a message names keys of a mapping."""
+    return f"key{'' if len(names) == 1 else 's'} {', '.join(map(shown, names))}"
+
+
 class WindowNormalizer(LeafSystem):
     """Keeps the last `window_s` of each channel in the Context and outputs them
     max-normalised (the paper's Fig. 3, Sec. III-A).
@@ -91,13 +128,13 @@ class WindowNormalizer(LeafSystem):
         self._channels_port = self.DeclareVectorInputPort("channels", len(CHANNEL_NAMES))
         self._window_lengths = {}
         rate_windows = []
+        if window_states is not None:
+            check_window_states(window_states, {group.name: window_layout(group).size
+                                                for group in config.rate_groups()})
         for group in config.rate_groups():
             layout = window_layout(group)
             initial = (np.zeros(layout.size) if window_states is None
                        else np.asarray(window_states[group.name], dtype=float))
-            if len(initial) < layout.size or np.any(initial[:layout.size]):
-                raise ValueError(f"the initial '{group.name}' state must start with an empty "
-                                 f"window of {layout.size} entries")
             samples = block_samples(group.rate_hz, config.block_s)
             batch = (samples_per_read(group.rate_hz, config.read_period_s) if samples == 1
                      else 1)

@@ -17,7 +17,7 @@ from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
-from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
                                           keys_overlap, optional_field,
                                           read_yaml_file, read_yaml_file_cached, require_mapping,
@@ -248,8 +248,10 @@ def _parse_cells(value, worlds, source: str) -> tuple[tuple[str, str], ...]:
             if world not in worlds:
                 raise ConfigError(f"{source}: field 'cells': unknown world '{world}' "
                                   f"(worlds: {', '.join(worlds)})")
-    if len(set(cells)) != len(cells):
-        raise ConfigError(f"{source}: field 'cells' names a cell twice")
+    repeated = next((cell for k, cell in enumerate(cells) if cell in cells[:k]), None)
+    if repeated is not None:
+        raise ConfigError(f"{source}: field 'cells' lists the cell {shown(list(repeated))} "
+                          "twice; list each cell once")
     return tuple(cells)
 
 

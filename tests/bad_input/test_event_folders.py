@@ -412,3 +412,22 @@ def test_an_unreadable_index_in_the_users_events_folder_is_refused_by_every_read
     assert code == 1, text
     with pytest.raises(event_file.MemorizedEventError, match=words.split(" (")[0]):
         events_folder.events_folder_of(paths.events_search_path(), "box")  # `tegrasp hardware`
+
+
+# Rule: a path (a variable's or an argument's) holding a byte that is not UTF-8 is shown as
+# that byte (`x\xff`), through echo.shown and every error line, never as Python's `\udcff`.
+@pytest.mark.parametrize("given", ["variable", "argument"])
+def test_a_path_that_is_not_utf8_is_shown_by_its_bytes(given, tmp_path, monkeypatch, capfd):
+    folder = os.fsdecode(os.fsencode(tmp_path) + b"/x\xff")
+    shown = f"{tmp_path}/x\\xff"
+    argv = ["plot", "events", "--out", str(tmp_path / "x.png")]
+    if given == "variable":
+        monkeypatch.setenv(paths.EVENTS_ENV, folder)
+        words = (f"TEGRASP_EVENTS_DIR='{shown}': {shown} does not exist; point it at your "
+                 "events folder")
+    else:
+        argv += ["--events", folder]
+        words = f"--events {shown}: does not exist; give an existing folder"
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, words)
+    assert "\\udc" not in text

@@ -129,6 +129,33 @@ def test_a_window_normalizer_given_text_for_its_config_names_the_argument():
         tegrasp_drake.WindowNormalizer(config="fast")
 
 
+# Rule: a system's mapping argument is checked at construction: a missing or unknown key is
+# named beside the keys expected, a wrong value by its key, with what was given and what must be.
+@pytest.mark.parametrize("states, words", [
+    ({"x": np.zeros(5)}, "WindowNormalizer: argument 'window_states' has unknown key 'x' and "
+     "lacks keys 'sa', 'ra'; give one initial state per rate group of the config, keyed "
+     "'sa', 'ra'"),
+    ({"sa": np.zeros(200)}, "WindowNormalizer: argument 'window_states' lacks key 'ra'; give "
+     "one initial state per rate group of the config, keyed 'sa', 'ra'"),
+    ({"sa": np.zeros((2, 3)), "ra": np.zeros(2000)},
+     "WindowNormalizer: argument 'window_states['sa']' must be a 1-D array (an empty window of "
+     "122 zeros, then the subclass's own state), got a 2-D array of shape (2, 3)"),
+    ({"sa": np.zeros(200), "ra": np.zeros(7)}, "WindowNormalizer: argument "
+     "'window_states['ra']' must start with an empty window of 1202 zeros, got 7 numbers"),
+    ({"sa": np.r_[np.zeros(5), np.nan, np.zeros(200)], "ra": np.zeros(2000)},
+     "WindowNormalizer: argument 'window_states['sa']' must start with an empty window of 122 "
+     "zeros, got nan at entry 5"),
+    ({"sa": np.array(["0"] * 200), "ra": np.zeros(2000)}, "WindowNormalizer: argument "
+     "'window_states['sa']' must be an array of numbers, got an array of dtype <U1"),
+    ({"sa": "zeros", "ra": np.zeros(2000)},
+     "WindowNormalizer: argument 'window_states['sa']' must be ndarray, got str 'zeros'"),
+])
+def test_a_window_normalizers_initial_states_are_checked_at_construction(states, words):
+    with pytest.raises((TypeError, ValueError)) as refused:
+        tegrasp_drake.WindowNormalizer(window_states=states)
+    assert str(refused.value) == words
+
+
 def test_public_dataclasses_check_scalar_field_types_at_construction():
     import numpy as np
     from tegrasp_drake.rig.objects import ObjectConfig

@@ -150,3 +150,20 @@ def test_a_sweep_override_of_a_swept_setting_or_its_section_is_refused(tmp_path,
                     f"attempts: 1, base_seed: 640, scenario_overrides: ['{override}']}}\n")
     with pytest.raises(ConfigError, match=r"scenario_overrides\[0\].*gripper.pad_friction"):
         LoadSensitivitySpec(spec)
+
+
+# Rule: a name listed twice is named, with what to do, in words that read right for each list.
+@pytest.mark.parametrize("text, words", [
+    ("objects: [box, thin_cylinder, box]\n",
+     "field 'objects': lists 'box' twice; list each object once"),
+    ("controllers: [memorized, memorized]\n",
+     "field 'controllers': lists 'memorized' twice; list each controller once"),
+])
+def test_a_sweep_spec_listing_a_name_twice_names_it(tmp_path, text, words):
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.sweep import LoadSweepSpec
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(text)
+    with pytest.raises(ConfigError) as refused:
+        LoadSweepSpec(spec)
+    assert str(refused.value) == f"{spec}: {words}"

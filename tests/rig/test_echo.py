@@ -41,3 +41,12 @@ class _Unwritable:
 ], ids=["huge integer", "list of a huge integer", "repr raises", "bytes"])
 def test_an_echo_never_raises(value, expected):
     assert shown(value) == expected
+
+
+def test_a_byte_a_path_could_not_decode_is_echoed_as_the_byte():
+    import os
+    import pathlib
+    path = os.fsdecode(b"/tmp/x\xff")  # as Python holds an argument or a variable's value
+    assert shown(path) == "'/tmp/x\\xff'"
+    assert shown(pathlib.PurePosixPath(path)) == "PurePosixPath('/tmp/x\\xff')"
+    assert shown("typed \\udcff") == "'typed \\\\udcff'"  # the text a user typed, kept

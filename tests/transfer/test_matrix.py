@@ -91,6 +91,8 @@ def test_the_remedy_spec_is_cells_of_the_matrix_with_the_envelope_and_floor_in_e
      "field 'worlds.ideal.scenario': scenario 'nowhere' is not in"),
     ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, other]]\n",
      "unknown world 'other'"),
+    ("worlds: {ideal: {scenario: memorizing_world}}\ncells: [[ideal, ideal], [ideal, ideal]]\n",
+     "field 'cells' lists the cell ['ideal', 'ideal'] twice; list each cell once"),
     ("worlds: {ideal: {scenario: memorizing_world, overrides: [object.name=box]}}\n"
      "cells: [[ideal, ideal]]\n", "'object.name' is set per trial"),
     ("worlds: {ideal: {scenario: memorizing_world, overrides: \"gripper.model=linkage\"}}\n"
