@@ -21,7 +21,7 @@ from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CO
 from tegrasp_drake.rig import objects
 from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.ranges import number_problem, real_number
-from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
                                           keys_overlap)
 
@@ -310,6 +310,7 @@ def _check_jittered_placements(spec: SweepSpec, source: str, fail) -> None:
     from tegrasp_drake.scenario.scenario import LoadScenario, check_start_clearance
     xy_bound = spec.randomisation.placement_xy_bound_m
     yaw_bound = spec.randomisation.placement_yaw_bound_deg
+    _check_jittered_offsets(spec.grid, xy_bound, source)
     # the arm's start and the marker, which no controller changes
     base = LoadScenario(overrides=spec.scenario_overrides, controller=spec.controllers[0])
     for name in spec.objects:
@@ -329,6 +330,26 @@ def _check_jittered_placements(spec: SweepSpec, source: str, fail) -> None:
                 raise ConfigError(f"{where}: field 'placement.{off_table[0]}' {off_table[1]}")
             check_start_clearance(dataclasses.replace(base, object=config,
                                                       placement=placement), where, xy_bound)
+
+
+def _check_jittered_offsets(grid, xy_bound: float, source: str) -> None:
+    """ConfigError naming the `grid` entry whose marker, moved by up to xy_bound [m] of
+    placement jitter (randomisation.placement_xy_bound_m), a trial's placement.offset range
+    would refuse, with the largest marker that range allows."""
+    from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
+    allowed = field_range(ObjectPlacementConfig, "offset")
+    for k, offset in enumerate(grid):
+        for axis, value in zip("xy", offset):
+            if allowed.contains(value + xy_bound) and allowed.contains(value - xy_bound):
+                continue
+            largest = min(allowed.high, -allowed.low) - xy_bound
+            raise ConfigError(
+                f"{source}: field 'grid[{k}]': marker {shown(list(offset))} m, moved by up to "
+                f"+-{xy_bound:g} m of placement jitter (randomisation.placement_xy_bound_m), "
+                f"reaches an offset of {value + math.copysign(xy_bound, value):g} m along "
+                f"{axis}, outside placement.offset's [{allowed.low:g}, {allowed.high:g}] m "
+                f"({allowed.why}); give markers within +-{largest:g} m, or a smaller "
+                "placement_xy_bound_m")
 
 
 def _check_scenario_overrides(assignments, controllers, fail):

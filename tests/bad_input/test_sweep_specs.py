@@ -150,3 +150,26 @@ def test_a_sweep_override_of_a_swept_setting_or_its_section_is_refused(tmp_path,
                     f"attempts: 1, base_seed: 640, scenario_overrides: ['{override}']}}\n")
     with pytest.raises(ConfigError, match=r"scenario_overrides\[0\].*gripper.pad_friction"):
         LoadSensitivitySpec(spec)
+
+
+# A marker in the grid's range that the placement jitter carries out of placement.offset's is
+# refused when the spec is loaded, naming the spec, its grid entry and the largest marker
+# allowed; not when the first trial that draws the jitter is built.
+@pytest.mark.parametrize("grid, entry", [
+    ("[[0.2, 0]]", "field 'grid[0]': marker [0.2, 0.0] m"),
+    ("[[0.0, 0.0], [0.1, -0.199]]", "field 'grid[1]': marker [0.1, -0.199] m"),
+])
+def test_a_marker_the_jitter_carries_out_of_range_is_refused_at_load(tmp_path, capfd, grid,
+                                                                     entry):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(f"objects: [box]\ncontrollers: [memorized]\ngrid: {grid}\nattempts: 1\n")
+    code, text = run_cli(["sweep", "--spec", str(spec), "--dry-run",
+                          "--out", str(tmp_path / "out")], capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, f"{spec}: {entry}", "+-0.002 m of placement jitter",
+                          "[-0.2, 0.2] m", "give markers within +-0.198 m")
+    assert "trial" not in text, text
+    spec.write_text("objects: [box]\ncontrollers: [memorized]\ngrid: [[0.198, -0.198]]\n"
+                    "attempts: 1\n")
+    assert run_cli(["sweep", "--spec", str(spec), "--dry-run",
+                    "--out", str(tmp_path / "out")], capfd)[0] == 0
