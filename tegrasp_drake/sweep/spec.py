@@ -295,7 +295,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     if not isinstance(spec.randomisation.sensor_noise, bool):
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
-    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, fail)
+    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, source, fail)
     _check_jittered_placements(spec, source, fail)
 
 
@@ -352,9 +352,9 @@ def _check_jittered_offsets(grid, xy_bound: float, source: str) -> None:
                 "placement_xy_bound_m")
 
 
-def _check_scenario_overrides(assignments, controllers, fail):
+def _check_scenario_overrides(assignments, controllers, source, fail):
     """Each override a `key=value` every controller's scenario accepts, no per-trial field."""
-    from tegrasp_drake.scenario.scenario import LoadScenario
+    from tegrasp_drake.scenario.scenario import LoadScenario, refuse_listed_override
     for k, assignment in enumerate(assignments):
         field_name = f"scenario_overrides[{k}]"
         if not isinstance(assignment, str) or assignment_problem(assignment):
@@ -370,6 +370,8 @@ def _check_scenario_overrides(assignments, controllers, fail):
         try:
             scenario = LoadScenario(overrides=assignments, controller=controller)
         except ConfigError as error:
+            refuse_listed_override(assignments, lambda k: f"{source}: field "
+                                   f"'scenario_overrides[{k}]'", controller=controller)
             fail("scenario_overrides", str(error))
         if isinstance(scenario.station, HardwareStationConfig):
             fail("scenario_overrides", "sets the station to !HardwareStationConfig (the real "

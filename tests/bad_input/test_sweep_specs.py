@@ -173,3 +173,27 @@ def test_a_marker_the_jitter_carries_out_of_range_is_refused_at_load(tmp_path, c
                     "attempts: 1\n")
     assert run_cli(["sweep", "--spec", str(spec), "--dry-run",
                     "--out", str(tmp_path / "out")], capfd)[0] == 0
+
+
+@pytest.mark.parametrize("kind", ["sweep", "sensitivity"])
+def test_a_sweep_override_out_of_range_names_its_entry_not_the_scenario_file(tmp_path, kind):
+    """The sweep spec's scenario_overrides[i] (a sensitivity spec's sweep's too), not the
+    built-in scenario file the override is applied to."""
+    from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
+    from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+    sweep = ("{objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], attempts: 1, "
+             "scenario_overrides: [grasp.grip_force=50, grasp.grip_force=5000.0]}")
+    spec = tmp_path / "s.yaml"
+    if kind == "sweep":
+        spec.write_text(f"{sweep[1:-1]}\n".replace("], ", "]\n").replace("1, ", "1\n"))
+        load, where = LoadSweepSpec, f"{spec}: "
+    else:
+        spec.write_text(f"parameters: [gripper.pad_friction]\nsweep: {sweep}\n")
+        load, where = LoadSensitivitySpec, f"{spec} [sweep]: "
+    with pytest.raises(ConfigError) as refused:
+        load(spec)
+    text = one_line_of(refused.value)
+    assert text.startswith(where + "field 'scenario_overrides[1]' 'grasp.grip_force=5000.0': "
+                           "field 'grasp.grip_force' must lie in [20, 235] N"), text
+    assert text.endswith("got 5000.0; correct the entry, or drop it"), text
+    assert "scenarios.yaml" not in text, text
