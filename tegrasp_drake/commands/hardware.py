@@ -319,7 +319,7 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
 
 def _run_holding_log(args, scenario, config, events, corrective, log, result_path) -> int:
     from tegrasp_drake.runs.hardware_run import LOG_MIN_FREE_BYTES, run_on_hardware
-    from tegrasp_drake.hardware.station import HardwareNotReadyError
+    from tegrasp_drake.hardware.station import DeviceAbsentError, HardwareNotReadyError
     earlier = [taken for taken in (pathlib.Path(log), result_path) if taken.exists()]
     for taken in earlier:  # --overwrite replaces a run's log and result, nothing else
         # What the file is, first: one that is not a run's log or result (a trial's
@@ -352,7 +352,10 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
                                      out=progress.write, progress=progress)
     except HardwareNotReadyError as e:
         staged.unlink(missing_ok=True)
-        print(f"tegrasp: error: {e}", file=sys.stderr, flush=True)
+        # a device's port is a field of the hardware config: the line names where it is
+        config_file = args.config or "the scenario's station"
+        where = f"{config_file}: " if isinstance(e, DeviceAbsentError) else ""
+        print(f"tegrasp: error: {where}{e}", file=sys.stderr, flush=True)
         return 1
     except BaseException:
         kept, replaced = keep_incomplete_log(staged, log)

@@ -68,6 +68,32 @@ class HardwareNotReadyError(RuntimeError):
     """A device did not come up; the message names it and where it was looked for."""
 
 
+class DeviceAbsentError(HardwareNotReadyError):
+    """A serial device's port (the config field the message names) is not there to open."""
+
+
+# Each serial device the station opens: its config section and what it is, for the messages.
+SERIAL_DEVICES = (("gripper", "Robotiq 2F-85's USB-RS485 adapter"),
+                  ("tactile", "myRIO's serial line"))
+
+
+def absent_device_problem(config: HardwareStationConfig) -> str | None:
+    """Why a serial device's port cannot be opened (its path not there: not plugged in, a
+    mistyped name), naming its config field, the OS's reason and what to do; None if every
+    port is there (what else keeps it from opening is the device's own open to say)."""
+    import os
+    for device, what in SERIAL_DEVICES:
+        port = getattr(config, device).port
+        try:
+            os.stat(port)
+        except OSError as error:
+            return (f"field '{device}.port' {shown(port)}: {error.strerror}: plug in the "
+                    f"{what}, or give its port in {device}.port; `tegrasp emulate all "
+                    "--write-config FILE` writes a config of emulated devices to try without "
+                    "hardware")
+    return None
+
+
 class HardwareStation(Diagram):
     """The hardware interface Diagram (module docstring). Build with MakeHardwareStation.
 
@@ -149,6 +175,9 @@ class HardwareStation(Diagram):
 
     def _open_devices(self):
         config = self._config
+        problem = absent_device_problem(config)
+        if problem:
+            raise DeviceAbsentError(problem)
         for device, port in (("gripper", config.gripper.port), ("tactile", config.tactile.port)):
             if serial_port_in_use(port):
                 raise HardwareNotReadyError(

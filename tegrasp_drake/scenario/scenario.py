@@ -34,7 +34,8 @@ from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, assignment_key,
                                           check_fields, keys_overlap, load_typed,
                                           loaded_with_overrides, parse_yaml,
-                                          read_yaml_file_cached, require, require_mapping)
+                                          read_yaml_file_cached, require, require_mapping,
+                                          set_words)
 from tegrasp_drake.simulation.capacitive_taxels import ad7147_frame_rate_hz, frame_rate_matches
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
@@ -540,6 +541,27 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
         lambda source: _checked_scenario(data, source, controller=controller,
                                          allow_long=allow_long, on_ignored=on_ignored),
         f"{path} [{name}]", overrides)
+
+
+def refuse_listed_override(overrides: typing.Sequence[str], place, *,
+                           base: typing.Sequence[str] = (), controller: str | None = None) -> None:
+    """For `overrides` a file lists (a sweep's scenario_overrides, a transfer world's
+    overrides) that the default scenario, after the `base` assignments, refused: ConfigError
+    naming place(k) (the file and the list's entry k) of the first one refused with those
+    before it, its assignment, why and what to do. Returns when none is refused so (the base
+    is at fault)."""
+    for k, assignment in enumerate(overrides):
+        document = read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
+        data = document[DEFAULT_SCENARIO]
+        taken = (*base, *overrides[:k + 1])
+        try:
+            for given in taken:
+                apply_override(data, given, option=place(k))
+            _refuse_other_controller_name(data, taken, controller)
+            _checked_scenario(data, set_words(assignment, place(k)), controller=controller,
+                              allow_long=False, on_ignored=None)
+        except ConfigError as error:
+            raise ConfigError(f"{error}; correct the entry, or drop it") from None
 
 
 def _refuse_other_controller_name(data: dict, overrides, controller: str | None) -> None:

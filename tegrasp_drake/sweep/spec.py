@@ -295,7 +295,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     if not isinstance(spec.randomisation.sensor_noise, bool):
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
-    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, fail)
+    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, source, fail)
     _check_jittered_placements(spec, source, fail)
 
 
@@ -310,6 +310,7 @@ def _check_jittered_placements(spec: SweepSpec, source: str, fail) -> None:
     from tegrasp_drake.scenario.scenario import LoadScenario, check_start_clearance
     xy_bound = spec.randomisation.placement_xy_bound_m
     yaw_bound = spec.randomisation.placement_yaw_bound_deg
+    _check_jittered_offsets(spec.grid, xy_bound, source)
     # the arm's start and the marker, which no controller changes
     base = LoadScenario(overrides=spec.scenario_overrides, controller=spec.controllers[0])
     for name in spec.objects:
@@ -331,9 +332,29 @@ def _check_jittered_placements(spec: SweepSpec, source: str, fail) -> None:
                                                       placement=placement), where, xy_bound)
 
 
-def _check_scenario_overrides(assignments, controllers, fail):
+def _check_jittered_offsets(grid, xy_bound: float, source: str) -> None:
+    """ConfigError naming the `grid` entry whose marker, moved by up to xy_bound [m] of
+    placement jitter (randomisation.placement_xy_bound_m), a trial's placement.offset range
+    would refuse, with the largest marker that range allows."""
+    from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
+    allowed = field_range(ObjectPlacementConfig, "offset")
+    for k, offset in enumerate(grid):
+        for axis, value in zip("xy", offset):
+            if allowed.contains(value + xy_bound) and allowed.contains(value - xy_bound):
+                continue
+            largest = min(allowed.high, -allowed.low) - xy_bound
+            raise ConfigError(
+                f"{source}: field 'grid[{k}]': marker {shown(list(offset))} m, moved by up to "
+                f"+-{xy_bound:g} m of placement jitter (randomisation.placement_xy_bound_m), "
+                f"reaches an offset of {value + math.copysign(xy_bound, value):g} m along "
+                f"{axis}, outside placement.offset's [{allowed.low:g}, {allowed.high:g}] m "
+                f"({allowed.why}); give markers within +-{largest:g} m, or a smaller "
+                "placement_xy_bound_m")
+
+
+def _check_scenario_overrides(assignments, controllers, source, fail):
     """Each override a `key=value` every controller's scenario accepts, no per-trial field."""
-    from tegrasp_drake.scenario.scenario import LoadScenario
+    from tegrasp_drake.scenario.scenario import LoadScenario, refuse_listed_override
     for k, assignment in enumerate(assignments):
         field_name = f"scenario_overrides[{k}]"
         if not isinstance(assignment, str) or assignment_problem(assignment):
@@ -349,6 +370,8 @@ def _check_scenario_overrides(assignments, controllers, fail):
         try:
             scenario = LoadScenario(overrides=assignments, controller=controller)
         except ConfigError as error:
+            refuse_listed_override(assignments, lambda k: f"{source}: field "
+                                   f"'scenario_overrides[{k}]'", controller=controller)
             fail("scenario_overrides", str(error))
         if isinstance(scenario.station, HardwareStationConfig):
             fail("scenario_overrides", "sets the station to !HardwareStationConfig (the real "

@@ -176,12 +176,30 @@ def check_worlds(spec: TransferSpec, source: str) -> None:
                 {"scenario_overrides": list(running_sweep(spec, name).scenario_overrides),
                  "controllers": list(spec.sweep.controllers)}, f"{source} [worlds.{name}]")
         except ConfigError as error:
-            raise ConfigError(str(error).replace("field 'scenario_overrides", "the world's "
-                                                 "preset and overrides ('scenario_overrides")
+            _refuse_world_entry(spec, name, source)
+            raise ConfigError(str(error).replace("field 'scenario_overrides'", "the world's "
+                                                 "preset and overrides with the sweep's")
                               ) from None
     if talk:
         print(f"checked {len(spec.worlds)} worlds in {time.perf_counter() - start:.1f} s",
               file=sys.stderr, flush=True)
+
+
+def _refuse_world_entry(spec: TransferSpec, name: str, source: str) -> None:
+    """ConfigError naming the spec's entry at fault in world `name`, which some controller's
+    scenario refuses: the first of worlds.<name>.overrides refused after the world's preset,
+    else the first of sweep.scenario_overrides refused after the world's settings."""
+    from tegrasp_drake.scenario.scenario import refuse_listed_override
+    world = spec.worlds[name]
+    preset = world_assignments(dataclasses.replace(world, overrides=()))
+    sweep_overrides = tuple(spec.sweep.scenario_overrides)
+    for controller in spec.sweep.controllers:
+        refuse_listed_override(world.overrides,
+                               lambda k: f"{source}: field 'worlds.{name}.overrides[{k}]'",
+                               base=preset, controller=controller)
+        refuse_listed_override(sweep_overrides, lambda k: f"{source}: field "
+                               f"'sweep.scenario_overrides[{k}]' in world '{name}'",
+                               base=world_assignments(world), controller=controller)
 
 
 def check_matrix_size(spec: TransferSpec, source: str, confirmed: int | None = None) -> None:

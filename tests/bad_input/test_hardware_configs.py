@@ -390,3 +390,33 @@ def test_a_huge_integer_in_a_hardware_config_text_field_is_named(field):
     with pytest.raises(ConfigError, match=rf"api: field '\w+\.{field}' must be a string, got "
                                           r"int <an integer of 5001 digits>"):
         validate_hardware_config(config, "api")
+
+
+@pytest.mark.parametrize("absent", ["gripper", "tactile"])
+def test_a_serial_device_not_plugged_in_names_its_config_field(absent, tmp_path, capfd):
+    """One line: the config file's field, the port, the OS's reason once, what to do; exit 1
+    (a device that did not come up). Either serial device, the other on a line that is there."""
+    master, slave, there = open_raw_pty()
+    try:
+        ports = {"gripper": there, "tactile": there}
+        ports[absent] = "/dev/ttyNOPE"
+        config = tmp_path / "hw.yaml"
+        config.write_text("".join(f"{device}: {{port: {port}}}\n"
+                                  for device, port in ports.items()))
+        code, text = run_cli(["hardware", "--config", str(config), "--controller", "heuristic",
+                              "--log", str(tmp_path / "run.lcmlog"), "--duration", "0.5"],
+                             capfd)
+    finally:
+        os.close(master)
+        os.close(slave)
+    assert code == 1, text
+    error = [line for line in text.splitlines() if "error" in line]
+    assert len(error) == 1 and "Traceback" not in text, text
+    assert error[0] == (f"tegrasp: error: {config}: field '{absent}.port' '/dev/ttyNOPE': No "
+                        f"such file or directory: plug in the "
+                        + ("Robotiq 2F-85's USB-RS485 adapter" if absent == "gripper"
+                           else "myRIO's serial line")
+                        + f", or give its port in {absent}.port; `tegrasp emulate all "
+                        "--write-config FILE` writes a config of emulated devices to try "
+                        "without hardware"), text
+    assert "Errno" not in text, text

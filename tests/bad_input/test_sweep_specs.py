@@ -167,3 +167,50 @@ def test_a_sweep_spec_listing_a_name_twice_names_it(tmp_path, text, words):
     with pytest.raises(ConfigError) as refused:
         LoadSweepSpec(spec)
     assert str(refused.value) == f"{spec}: {words}"
+
+
+# A marker in the grid's range that the placement jitter carries out of placement.offset's is
+# refused when the spec is loaded, naming the spec, its grid entry and the largest marker
+# allowed; not when the first trial that draws the jitter is built.
+@pytest.mark.parametrize("grid, entry", [
+    ("[[0.2, 0]]", "field 'grid[0]': marker [0.2, 0.0] m"),
+    ("[[0.0, 0.0], [0.1, -0.199]]", "field 'grid[1]': marker [0.1, -0.199] m"),
+])
+def test_a_marker_the_jitter_carries_out_of_range_is_refused_at_load(tmp_path, capfd, grid,
+                                                                     entry):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(f"objects: [box]\ncontrollers: [memorized]\ngrid: {grid}\nattempts: 1\n")
+    code, text = run_cli(["sweep", "--spec", str(spec), "--dry-run",
+                          "--out", str(tmp_path / "out")], capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, f"{spec}: {entry}", "+-0.002 m of placement jitter",
+                          "[-0.2, 0.2] m", "give markers within +-0.198 m")
+    assert "trial" not in text, text
+    spec.write_text("objects: [box]\ncontrollers: [memorized]\ngrid: [[0.198, -0.198]]\n"
+                    "attempts: 1\n")
+    assert run_cli(["sweep", "--spec", str(spec), "--dry-run",
+                    "--out", str(tmp_path / "out")], capfd)[0] == 0
+
+
+@pytest.mark.parametrize("kind", ["sweep", "sensitivity"])
+def test_a_sweep_override_out_of_range_names_its_entry_not_the_scenario_file(tmp_path, kind):
+    """The sweep spec's scenario_overrides[i] (a sensitivity spec's sweep's too), not the
+    built-in scenario file the override is applied to."""
+    from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
+    from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+    sweep = ("{objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], attempts: 1, "
+             "scenario_overrides: [grasp.grip_force=50, grasp.grip_force=5000.0]}")
+    spec = tmp_path / "s.yaml"
+    if kind == "sweep":
+        spec.write_text(f"{sweep[1:-1]}\n".replace("], ", "]\n").replace("1, ", "1\n"))
+        load, where = LoadSweepSpec, f"{spec}: "
+    else:
+        spec.write_text(f"parameters: [gripper.pad_friction]\nsweep: {sweep}\n")
+        load, where = LoadSensitivitySpec, f"{spec} [sweep]: "
+    with pytest.raises(ConfigError) as refused:
+        load(spec)
+    text = one_line_of(refused.value)
+    assert text.startswith(where + "field 'scenario_overrides[1]' 'grasp.grip_force=5000.0': "
+                           "field 'grasp.grip_force' must lie in [20, 235] N"), text
+    assert text.endswith("got 5000.0; correct the entry, or drop it"), text
+    assert "scenarios.yaml" not in text, text

@@ -210,8 +210,8 @@ def test_an_empty_yaml_file_is_refused_not_run_as_the_papers_experiment(tmp_path
     ("scenario_overrides: ['placement.offset=[0.0, 0.01]']\n",
      "scenario_overrides[0]", "set per trial"),
     ("scenario_overrides: ['controller.memorized_corrective.events=[hold_smash]']\n",
-     "scenario_overrides", "hold_smash"),
-    ("scenario_overrides: ['controller.wobble=1']\n", "scenario_overrides", "wobble"),
+     "scenario_overrides[0]", "hold_smash"),
+    ("scenario_overrides: ['controller.wobble=1']\n", "scenario_overrides[0]", "wobble"),
 ])
 def test_invalid_yaml_names_file_and_field(tmp_path, text, field, words):
     path = write_yaml(tmp_path, text)

@@ -315,3 +315,24 @@ def test_missing_events_of_a_cell_are_named_before_any_trial_runs(tmp_path, monk
     assert message.endswith("so record these there first or drop the controller")
     assert "\n" not in message
     assert not out.exists()
+
+
+def test_a_world_override_out_of_range_names_its_entry_in_the_spec(tmp_path):
+    """Named where the user wrote it (worlds.<name>.overrides[i]), brackets balanced, no
+    count of the preset's settings the user did not give."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    spec = tmp_path / "t.yaml"
+    spec.write_text("worlds:\n  ideal: {scenario: memorizing_world}\n"
+                    "  big: {scenario: faithful_world, overrides: [grasp.grip_force=50.0, "
+                    "grasp.grip_force=5000.0]}\ncells: [[ideal, big]]\n"
+                    "sweep: {objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], "
+                    "attempts: 1}\n")
+    with pytest.raises(ConfigError) as refused:
+        LoadTransferSpec(spec)
+    text = str(refused.value)
+    assert text.startswith(f"{spec}: field 'worlds.big.overrides[1]' 'grasp.grip_force=5000.0'"
+                           ": field 'grasp.grip_force' must lie in [20, 235] N"), text
+    assert "got 5000.0; correct the entry, or drop it" in text, text
+    assert text.count("(") == text.count(")") and text.count("[") == text.count("]"), text
+    assert "scenario_overrides" not in text and "other --set" not in text, text
