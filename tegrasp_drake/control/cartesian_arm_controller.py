@@ -1,8 +1,11 @@
 """Cartesian arm control: X_WG_desired to `arm.desired_state` (the port the simulated
 station and the Jaco driver take), by Drake's DifferentialInverseKinematicsIntegrator within
 the JACO2's joint limits and a DiscreteDerivative for the velocities; and the fastest that
-IK can move the hand along a move (move_top_speeds_mps), which a scenario's moves are
-checked against."""
+IK can move the hand along a move (move_top_speeds_mps) and the shortest minimum-jerk
+move it follows (shortest_move_s), which a scenario's moves are checked against at load and
+the state machine's run-time moves are stretched to (followable_move_s)."""
+
+import math
 
 import functools
 
@@ -14,6 +17,7 @@ from pydrake.multibody.inverse_kinematics import (DifferentialInverseKinematicsI
 from pydrake.systems.primitives import DiscreteDerivative, Multiplexer
 from scipy.optimize import linprog
 
+from tegrasp_drake.control.motion_profiles import minimum_jerk_slope
 from tegrasp_drake.rig.arm_kinematics import (R_WG_SIDE_GRASP, UnreachablePoseError,
                                               make_arm_control_plant, solve_grasp_frame_ik)
 from tegrasp_drake.modelgen import jaco2_dh
@@ -131,6 +135,49 @@ def move_top_speeds_mps(start_xyz, end_xyz, directions=None) -> tuple | None:
             return None
         directions = (step / np.linalg.norm(step),)
     return _move_top_speeds(key(start_xyz), key(end_xyz), tuple(key(d) for d in directions))
+
+
+def shortest_move_s(start_xyz, end_xyz) -> tuple[float, float] | None:
+    """(shortest duration [s], top speed where it binds [m/s]) of a minimum-jerk straight
+    move of the grasp frame from start_xyz to end_xyz [m, world]: the least T for which the
+    speed the move asks at each pose move_top_speeds_mps samples, 30 tau^2 (1 - tau)^2 d / T
+    (minimum_jerk_slope), is at most the arm's top speed there (the joints at 90 % of their
+    published top speeds, JOINT_SPEED_MARGIN). (0, inf) for a move of no length; None when
+    the arm cannot put the hand at a pose of the move. The one rule both the scenario's
+    load-time check and the state machine's run-time moves (followable_move_s) apply."""
+    distance = float(np.linalg.norm(np.subtract(end_xyz, start_xyz, dtype=float)))
+    if distance <= 0.0:
+        return 0.0, math.inf
+    tops = move_top_speeds_mps(start_xyz, end_xyz)
+    if tops is None:
+        return None
+    shortest, binding = 0.0, math.inf
+    for tau, top in tops:
+        needed = distance * minimum_jerk_slope(tau) / top
+        if needed > shortest:
+            shortest, binding = needed, top
+    return shortest, binding
+
+
+def followable_move_s(start_xyz, end_xyz, move_s: float) -> tuple[float, str]:
+    """(duration [s], note) of a move the state machine decides at run time (Avoid along a
+    hit's push, a Re-Reach's shift), whose direction no load-time check could know:
+    move_s [s], the configured duration, stretched to the shortest the arm follows along
+    it (shortest_move_s) rounded up to the millisecond when that is longer. note: "" when
+    move_s stands, else why it was stretched; a move the arm cannot reach keeps move_s
+    (it lags whatever its duration) and says so. Once per corrective move, a few ms."""
+    found = shortest_move_s(start_xyz, end_xyz)
+    if found is None:
+        return move_s, (f"out of the JACO2's reach in the side grasp: kept at "
+                        f"{move_s:g} s")
+    shortest, binding = found
+    needed = math.ceil(shortest * 1000.0 - 1e-9) / 1000.0
+    if needed <= move_s:
+        return move_s, ""
+    distance = float(np.linalg.norm(np.subtract(end_xyz, start_xyz, dtype=float)))
+    return needed, (f"{distance * 1000:.0f} mm stretched from {move_s:g} s to {needed:g} s, "
+                    f"the shortest the JACO2 follows that way (its top hand speed "
+                    f"{binding:.3g} m/s where it binds)")
 
 
 def AddCartesianArmController(builder, *, position_measured, velocity_measured,

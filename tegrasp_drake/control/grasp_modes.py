@@ -115,6 +115,12 @@ class Transition:
     # Avoid: (left, right) SA gain of the hit [N].
     delta_sa_n: tuple[float, float] | None = bounded(None, unit="N", length=2,
                                                      why="a change of force: either sign")
+    # Avoid, Re-Reach: the move's duration [s], the configured one or longer where the arm
+    # follows no faster along the move's direction (cartesian_arm_controller.followable_move_s;
+    # the reason says why when stretched).
+    move_s: float | None = bounded(None, low=0.0, low_open=True, unit="s",
+                                   why="a move's duration: positive, stretched to what the "
+                                       "arm follows, so no upper bound of its own")
     code: str | None = None  # the deciding rule's name (rule_engine.Rule.name)
 
     def __post_init__(self):
@@ -177,7 +183,7 @@ class Transition:
 
 _REQUIRED_KEYS = ("t", "from", "to", "trigger", "reason")
 _OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "direction",
-                    "delta_sa_n", "code")
+                    "delta_sa_n", "move_s", "code")
 
 
 def _check_code(code) -> None:

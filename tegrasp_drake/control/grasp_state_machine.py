@@ -12,6 +12,7 @@ from pydrake.math import RigidTransform
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.control import taxel_aware, transition_logic
+from tegrasp_drake.control.cartesian_arm_controller import followable_move_s
 from tegrasp_drake.control.corrective_actions import (
     approach_retreat_target, avoid_move, hit_baseline_history, is_hit, lift_load_grip_force,
     pad_accelerations_in_world, ra_history, ra_level, re_reach_shift, re_reach_target)
@@ -210,7 +211,9 @@ class GraspStateMachine(LeafSystem):
                             grasp_xyz=(p.object_xy[0], p.object_xy[1], p.grasp_height))
                     else:
                         target = target + np.array([dx, 0.0, 0.0])
-                    duration = self._config.re_reach.move_s
+                    # the shift is known only now: as long as the arm needs along it
+                    return self._start_corrective_move(s, t, here, target,
+                                                       self._config.re_reach.move_s)
                 else:
                     # Back to the start pose's distance (nearer, the wrist nears its singularity).
                     target = np.array([max(here[0] - p.retract_distance, p.start_xyz[0]),
@@ -239,9 +242,24 @@ class GraspStateMachine(LeafSystem):
         entry = dataclasses.replace(
             s.timeline[-1], direction=tuple(round(float(x), 3) for x in move.direction_W),
             delta_sa_n=tuple(round(float(x), 3) for x in move.delta_sa_n))
-        return dataclasses.replace(
-            s, stage=Stage.MOVING, timeline=s.timeline[:-1] + (entry,),
-            segment=MotionSegment(t, config.avoid.move_s, tuple(here), tuple(move.p_end_W)))
+        return self._start_corrective_move(
+            dataclasses.replace(s, timeline=s.timeline[:-1] + (entry,)), t, here,
+            move.p_end_W, config.avoid.move_s)
+
+    @staticmethod
+    def _start_corrective_move(s: MachineState, t: float, here, target,
+                               move_s: float) -> MachineState:
+        """Start the move from here to target [m, world] a corrective action decided at run
+        time (Avoid's away from a hit, a Re-Reach's shift), in move_s [s] or as long as the
+        arm needs along it (followable_move_s); its duration, and why when stretched, on the
+        action's transition (the timeline's last)."""
+        duration, note = followable_move_s(here, target, move_s)
+        entry = s.timeline[-1]
+        entry = dataclasses.replace(entry, move_s=round(duration, 6),
+                                    reason=f"{entry.reason}; {note}" if note else entry.reason)
+        return dataclasses.replace(s, stage=Stage.MOVING, timeline=s.timeline[:-1] + (entry,),
+                                   segment=MotionSegment(t, duration, tuple(here),
+                                                         tuple(target)))
 
     def _observe(self, s: MachineState, t: float, context):
         """The tick's Observation, and the state with its running timers updated."""

@@ -239,7 +239,9 @@ def _check_sensors_and_scene(scenario: Scenario, source: str) -> None:
 
 # Avoid moves along the stroke (y, either way) or up, or along a hit's horizontal push (any
 # horizontal way, known only once the hit comes). Checked along the first three; along the
-# push the defaults' Avoid is faster than the arm (docs/model.md, "What each setting may be").
+# push the defaults' Avoid is faster than the arm, and the state machine stretches that move
+# to what the arm follows (cartesian_arm_controller.followable_move_s;
+# docs/model.md, "What each setting may be").
 AVOID_DIRECTIONS = ((0.0, 1.0, 0.0), (0.0, -1.0, 0.0), (0.0, 0.0, 1.0))
 
 
@@ -279,14 +281,15 @@ def _hand_moves(scenario: Scenario):
 
 def _check_hand_speeds(scenario: Scenario, source: str) -> None:
     """Each arm move against the fastest the arm can move the hand along it where it is
-    (cartesian_arm_controller.move_top_speeds_mps: its joints at their speed limits, the
-    hand's orientation held), pose by pose along its path: a move asking more somewhere
-    leaves the differential IK behind, the arm lags its command and the trial would not do
-    what its script says."""
+    (cartesian_arm_controller.shortest_move_s over move_top_speeds_mps: its joints at their
+    speed limits, the hand's orientation held), pose by pose along its path: a move asking
+    more somewhere leaves the differential IK behind, the arm lags its command and the trial
+    would not do what its script says. The moves the state machine decides at run time
+    (Avoid along a hit's push, a Re-Reach's shift) it stretches by the same rule
+    (followable_move_s)."""
     # every arm move, scripted or corrective, follows the minimum-jerk profile
-    from tegrasp_drake.control.cartesian_arm_controller import move_top_speeds_mps
-    from tegrasp_drake.control.motion_profiles import (MINIMUM_JERK_PEAK_SPEED,
-                                                       minimum_jerk_slope)
+    from tegrasp_drake.control.cartesian_arm_controller import shortest_move_s
+    from tegrasp_drake.control.motion_profiles import MINIMUM_JERK_PEAK_SPEED
     for field, distance, duration, what, paths in _hand_moves(scenario):
         if distance <= 0:  # no move (the Settle and Hold phases): it may take no time
             continue
@@ -296,13 +299,11 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
                 f"hand in no time ({what})", duration)
         shortest, binding = 0.0, math.inf  # [s], the top speed [m/s] where it binds
         for start, end in paths:
-            tops = move_top_speeds_mps(start, end)
-            if tops is None:  # the arm cannot put the hand at a pose of this move
+            found = shortest_move_s(start, end)
+            if found is None:  # the arm cannot put the hand at a pose of this move
                 _refuse_unreachable_move(field, what, start, end, source)
-            for tau, top in tops:
-                needed = distance * minimum_jerk_slope(tau) / top
-                if needed > shortest:
-                    shortest, binding = needed, top
+            if found[0] > shortest:
+                shortest, binding = found
         if duration < shortest:
             require(False, source, field,
                     f"is too short to move the hand {distance * 1000:.0f} mm ({what}): its "

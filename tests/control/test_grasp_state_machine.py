@@ -1,18 +1,27 @@
 """GraspStateMachine through its ports, with hand-set inputs (no plant)."""
 
+import dataclasses
+import math
 import pathlib
 
 import numpy as np
 import pytest
 from pydrake.common.value import AbstractValue
+from pydrake.math import RigidTransform
 from pydrake.systems.analysis import Simulator
 
 from tegrasp_drake.robotiq import units as ru
 from tegrasp_drake.rig import station_interface as ports
-from tegrasp_drake.rig.arm_kinematics import R_WG_SIDE_GRASP
+from tegrasp_drake.rig.arm_kinematics import (R_WG_SIDE_GRASP, make_arm_control_plant,
+                                              solve_grasp_frame_ik)
+from tegrasp_drake.control.cartesian_arm_controller import (_follow as follow_pose,
+                                                            grasp_frame_jacobian,
+                                                            jaco_joint_limits)
+from tegrasp_drake.control.corrective_actions import R_G_PAD
+from tegrasp_drake.control.motion_profiles import minimum_jerk, minimum_jerk_slope
 from tegrasp_drake.control.controller_config import (AvoidConfig, MemorizedControllerConfig,
                                                      TaxelAwareControllerConfig)
-from tegrasp_drake.control.grasp_modes import Mode, Trigger
+from tegrasp_drake.control.grasp_modes import Mode, Stage, Trigger
 from tegrasp_drake.control.grasp_state_machine import GraspStateMachine
 from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
 from tegrasp_drake.control.taxel_aware import TAXEL_AWARE_TABLE
@@ -331,3 +340,70 @@ def test_the_machine_runs_only_the_rules_kept_to_its_hand():
     prismatic = taxel_aware_machine("prismatic").rule_table()
     assert not names(prismatic) & linkage_only
     assert names(prismatic) | linkage_only == names(TAXEL_AWARE_TABLE)
+
+
+def avoid_along(direction_W) -> tuple:
+    """The paper's machine in Hold on the box at its marker, hit with the pads' common
+    acceleration along direction_W (world, horizontal) and their SA alike: (the Avoid's move,
+    MotionSegment; its transition, JSON form)."""
+    machine, scenario = make_machine()
+    simulator, context, inputs = start(machine)
+    lift(simulator, machine, context, inputs, scenario)
+    run_until_mode(simulator, machine, Mode.HOLD, scenario.grasp.lift_s + 0.1)
+    config = MemorizedControllerConfig()
+    simulator.AdvanceTo(context.get_time() + config.avoid.hit_refractory_s + 0.01)
+    # the left pad's acceleration that reads direction_W in world (pad_accelerations_in_world)
+    R_W_left = (R_WG_SIDE_GRASP @ R_G_PAD[0]).matrix()
+    inputs.set(channels=[10.0, 10.0, 10.0 * config.avoid.hit_ra_mps2, 0.1],
+               pad_acceleration=np.r_[R_W_left.T @ (5.0 * np.asarray(direction_W)), 0, 0, 0])
+    run_until_mode(simulator, machine, Mode.AVOID, 0.01)
+    inputs.set(channels=[10.0, 10.0, 0.1, 0.1])
+    simulator.AdvanceTo(context.get_time() + config.avoid.sense_s + 0.01)
+    state = machine.state(context)
+    assert state.stage == Stage.MOVING
+    return state.segment, machine.timeline(context)[-1]
+
+
+def joint_speed_use(segment, samples=201) -> float:
+    """The most any joint turns along the minimum-jerk `segment`, as a fraction of its speed
+    limit (jaco_joint_limits: 90 % of the published), the joints solved pose by pose (each
+    seeded by the one before, the branch the differential IK follows) and their rates from the
+    grasp frame's Jacobian: the hand's velocity, orientation held."""
+    plant = make_arm_control_plant()
+    plant_context = plant.CreateDefaultContext()
+    start, end = np.asarray(segment.p_start), np.asarray(segment.p_end)
+    limits = jaco_joint_limits()[2]
+    q, use = solve_grasp_frame_ik(plant, RigidTransform(R_WG_SIDE_GRASP, start)), 0.0
+    for tau in np.linspace(0.0, 1.0, samples):
+        s = float(minimum_jerk(float(tau)))
+        q = follow_pose(plant, plant_context, q, start + s * (end - start))
+        velocity = (end - start) * minimum_jerk_slope(float(tau)) / segment.duration
+        rates = np.linalg.solve(grasp_frame_jacobian(plant, plant_context, q),
+                                np.r_[0.0, 0.0, 0.0, velocity])
+        use = max(use, float(np.max(np.abs(rates) / limits)))
+    return use
+
+
+def test_an_avoid_the_arm_cannot_follow_in_move_s_is_stretched_to_what_it_follows():
+    # 165 deg from +x (toward the start pose, the wrist near its singularity): the slowest of
+    # the 24 horizontal directions (docs/model.md, "What each setting may be": 1.04 s).
+    away = np.array([math.cos(math.radians(165)), math.sin(math.radians(165)), 0.0])
+    segment, avoid = avoid_along(away)
+    assert avoid["direction"] == pytest.approx(list(away), abs=1e-3)
+    assert segment.duration == pytest.approx(1.037, abs=0.005)
+    assert avoid["move_s"] == segment.duration
+    assert "stretched from 0.6 s to" in avoid["reason"]
+    # The bound is the joints' limits: the stretched move turns the busiest joint at its limit,
+    # to within 4 % (the bound samples 11 poses; sampled at 201 the busiest joint reaches 1.036
+    # of the IK's 90 % limit, 93 % of its published top speed), the 0.6 s move far past it.
+    assert 0.97 <= joint_speed_use(segment) <= 1.04
+    assert joint_speed_use(dataclasses.replace(segment, duration=0.6)) > 1.5
+
+
+def test_an_avoid_the_arm_follows_in_move_s_keeps_it():
+    # 60 deg from +x: the hand's fastest horizontal direction here (0.42 s would do)
+    away = np.array([math.cos(math.radians(60)), math.sin(math.radians(60)), 0.0])
+    segment, avoid = avoid_along(away)
+    assert segment.duration == MemorizedControllerConfig().avoid.move_s == 0.6
+    assert avoid["move_s"] == 0.6 and avoid["reason"] == "hit: RA above the hit threshold"
+    assert joint_speed_use(segment) < 0.8
