@@ -152,6 +152,7 @@ def check_spec_options(args) -> None:
 def spec_from_arguments(args) -> SweepSpec:
     """The spec file (or the paper's defaults) with the command-line overrides applied."""
     spec = LoadSweepSpec(args.spec) if args.spec else SweepSpec()
+    in_file = len(spec.scenario_overrides)
     overrides = {name: value for name, value in (
         ("objects", args.objects and tuple(args.objects)),
         ("controllers", args.controllers and tuple(args.controllers)),
@@ -164,7 +165,9 @@ def spec_from_arguments(args) -> SweepSpec:
                                      if name in overrides["objects"]}
     spec = dataclasses.replace(spec, **overrides)
     source = f"{args.spec} with command-line options" if args.spec else "command line"
-    validate_spec(spec, source)
+    validate_spec(spec, source, override_place=lambda k: (
+        f"{args.spec}: field 'scenario_overrides[{k}]'" if k < in_file
+        else "--set"))
     check_sweep_size(spec, source, args.confirm_trials)
     return spec
 

@@ -9,7 +9,7 @@ import math
 import re
 import typing
 import zlib
-from collections.abc import Collection, Mapping
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -23,7 +23,7 @@ from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.ranges import number_problem, real_number
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
-                                          keys_overlap)
+                                          keys_overlap, set_words)
 
 # The paper's three objects (Fig. 8a); a spec can add its own (`user_objects`).
 BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
@@ -259,9 +259,12 @@ def trial_problem(trial) -> str | None:
 
 def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                   builtin_objects: Collection[str] = BUILTIN_OBJECTS,
-                  controllers: Collection[str] = CONTROLLER_NAMES) -> None:
+                  controllers: Collection[str] = CONTROLLER_NAMES,
+                  override_place: Callable[[int], str] | None = None) -> None:
     """Raises ConfigError naming `source` and the field when `spec` cannot run (objects against
-    `builtin_objects` and the spec's `user_objects`, controllers against `controllers`)."""
+    `builtin_objects` and the spec's `user_objects`, controllers against `controllers`).
+    `override_place(k)` names where scenario_overrides[k] was written (default: `source`'s
+    field; "--set" for one given on the command line), its assignment shown after it."""
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
@@ -295,7 +298,8 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     if not isinstance(spec.randomisation.sensor_noise, bool):
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
-    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, source, fail)
+    place = override_place or (lambda k: f"{source}: field 'scenario_overrides[{k}]'")
+    _check_scenario_overrides(spec.scenario_overrides, spec.controllers, place, fail)
     _check_jittered_placements(spec, source, fail)
 
 
@@ -352,26 +356,31 @@ def _check_jittered_offsets(grid, xy_bound: float, source: str) -> None:
                 "placement_xy_bound_m")
 
 
-def _check_scenario_overrides(assignments, controllers, source, fail):
-    """Each override a `key=value` every controller's scenario accepts, no per-trial field."""
+def _check_scenario_overrides(assignments, controllers, place, fail):
+    """Each override a `key=value` every controller's scenario accepts, no per-trial field;
+    a refused one named by `place(k)`."""
     from tegrasp_drake.scenario.scenario import LoadScenario, refuse_listed_override
+
+    def refuse(k, message):
+        given = assignments[k]
+        where = set_words(given, place(k)) if isinstance(given, str) else place(k)
+        raise ConfigError(f"{where}: {message}")
+
     for k, assignment in enumerate(assignments):
-        field_name = f"scenario_overrides[{k}]"
         if not isinstance(assignment, str) or assignment_problem(assignment):
-            fail(field_name, f"expected 'key=value' (as `tegrasp trial --set`), key a dotted "
-                             f"field name such as object.mass, got {shorten(repr(assignment))}")
+            refuse(k, f"expected 'key=value' (as `tegrasp trial --set`), key a dotted "
+                      f"field name such as object.mass, got {shorten(repr(assignment))}")
         key = assignment_key(assignment)
         for per_trial in PER_TRIAL_SCENARIO_FIELDS:
             if keys_overlap(key, per_trial):
-                fail(field_name, f"'{key}' is set per trial by the sweep (objects, grid, "
-                                 "randomisation, base_seed, controllers); set it there")
+                refuse(k, f"'{key}' is set per trial by the sweep (objects, grid, "
+                          "randomisation, base_seed, controllers); set it there")
     from tegrasp_drake.hardware.config import HardwareStationConfig
     for controller in controllers if assignments else ():
         try:
             scenario = LoadScenario(overrides=assignments, controller=controller)
         except ConfigError as error:
-            refuse_listed_override(assignments, lambda k: f"{source}: field "
-                                   f"'scenario_overrides[{k}]'", controller=controller)
+            refuse_listed_override(assignments, place, controller=controller)
             fail("scenario_overrides", str(error))
         if isinstance(scenario.station, HardwareStationConfig):
             fail("scenario_overrides", "sets the station to !HardwareStationConfig (the real "

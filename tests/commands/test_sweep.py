@@ -85,8 +85,10 @@ def test_trial_errors_give_exit_code_1(tmp_path, capsys):
     (["--workers", "0"], "--workers must be at least 1", 1),
     (["--benchmark", "--scheduler", "tcp://127.0.0.1:8786"], "drop --scheduler", 1),
     (["--set", "controller.memorized_corrective.events=[hold_smash]"],
-     "field 'scenario_overrides'", 2),
-    (["--set", "object.name=box"], "set per trial by the sweep", 2),
+     "error: --set 'controller.memorized_corrective.events=[hold_smash]': field "
+     "'controller.memorized_corrective.events[0]' must name a corrective event", 2),
+    (["--set", "object.name=box"],
+     "error: --set 'object.name=box': 'object.name' is set per trial by the sweep", 2),
 ])
 def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message, code):
     """Exit 2 for a spec refused (the options that set its fields), 1 for a runner's option
@@ -94,6 +96,25 @@ def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message,
     out = tmp_path / "out"
     assert command.main([*arguments, "--out", str(out), *FAKE]) == code
     assert message in capsys.readouterr().err
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("given, refused", [
+    ("grasp.hold_s=1e7", "--set 'grasp.hold_s=1e7': field 'grasp.hold_s' must lie in"),
+    ("grasp.hold_s=2", "field 'scenario_overrides[0]' 'grasp.grip_force=5000': field "
+                       "'grasp.grip_force' must lie in"),
+])
+def test_a_refused_override_is_named_where_it_was_written(tmp_path, capsys, given, refused):
+    """A spec file's entry by the file and its index; one given with --set by the option."""
+    spec = tmp_path / "s.yaml"
+    entries = "[grasp.grip_force=5000]" if given == "grasp.hold_s=2" else "[grasp.hold_s=2]"
+    spec.write_text(f"objects: [box]\nscenario_overrides: {entries}\n")
+    out = tmp_path / "out"
+    assert command.main(["--spec", str(spec), "--set", given, "--out", str(out), *FAKE]) == 2
+    err = capsys.readouterr().err
+    assert refused in err, err
+    where = f"{spec}: " if given == "grasp.hold_s=2" else "error: --set"
+    assert where in err and "scenarios.yaml" not in err, err
     assert not out.exists()
 
 
