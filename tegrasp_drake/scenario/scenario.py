@@ -290,7 +290,7 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
     # every arm move, scripted or corrective, follows the minimum-jerk profile
     from tegrasp_drake.control.cartesian_arm_controller import shortest_move_s
     from tegrasp_drake.control.motion_profiles import MINIMUM_JERK_PEAK_SPEED
-    for field, distance, duration, what, paths in _hand_moves(scenario):
+    for field, distance, duration, what, move_paths in _hand_moves(scenario):
         if distance <= 0:  # no move (the Settle and Hold phases): it may take no time
             continue
         # a move's duration must not be 0 below (a controller move's declared range excludes
@@ -298,7 +298,7 @@ def _check_hand_speeds(scenario: Scenario, source: str) -> None:
         require(duration > 0, source, field, "must be positive [s]: the arm cannot move the "
                 f"hand in no time ({what})", duration)
         shortest, binding = 0.0, math.inf  # [s], the top speed [m/s] where it binds
-        for start, end in paths:
+        for start, end in move_paths:
             found = shortest_move_s(start, end)
             if found is None:  # the arm cannot put the hand at a pose of this move
                 _refuse_unreachable_move(field, what, start, end, source)
