@@ -18,7 +18,9 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.commands.script_output import (CORRECTIVE_LOGS_ADVICE, ENSEMBLE_LOGS_ADVICE,
+                                                  EVENTS_ADVICE, run_script, script_parser,
+                                                  write_report)
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
@@ -84,11 +86,14 @@ def tally(outcomes, situations: int):
 
 def main(argv=None) -> int:
     parser = script_parser("choose_corrective_thresholds", __doc__)
-    parser.add_argument("corrective_logs", type=pathlib.Path)
-    parser.add_argument("ensemble_logs", type=pathlib.Path)
+    parser.add_input("corrective_logs", type=pathlib.Path, what="corrective logs folder",
+                     advice=CORRECTIVE_LOGS_ADVICE)
+    parser.add_input("ensemble_logs", type=pathlib.Path, what="ensemble logs folder",
+                     advice=ENSEMBLE_LOGS_ADVICE)
     parser.add_output("out", type=pathlib.Path)
     parser.add_argument("--object", default="box")
-    parser.add_argument("--events", type=pathlib.Path, default=package_events_dir())
+    parser.add_input("--events", type=pathlib.Path, default=package_events_dir(),
+                     what="--events folder", advice=EVENTS_ADVICE)
     args = parser.parse_args(argv)
     events = load_memorized_events(args.events / CORRECTIVE_FOLDER, args.object,
                                    required=CORRECTIVE_TRANSITIONS)

@@ -14,7 +14,8 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.commands.script_output import (ENSEMBLE_LOGS_ADVICE, EVENTS_ADVICE,
+                                                  run_script, script_parser, write_report)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.ranges import Range
@@ -60,12 +61,14 @@ def _fmt(value):
 
 def main(argv=None) -> int:
     parser = script_parser("choose_ensemble_thresholds", __doc__)
-    parser.add_argument("logs", type=pathlib.Path)
+    parser.add_input("logs", type=pathlib.Path, what="logs folder",
+                     advice=ENSEMBLE_LOGS_ADVICE)
     parser.add_output("out", type=pathlib.Path)
     parser.add_number("--runs", type=integer_option, nargs="+", default=[5, 6, 7],
                       allowed=Range(low=0, why="the index of a run record_ensemble_events "
                                                "wrote"))
-    parser.add_argument("--events", default=str(package_events_dir()))
+    parser.add_input("--events", default=str(package_events_dir()), what="--events folder",
+                     advice=EVENTS_ADVICE)
     args = parser.parse_args(argv)
     spans = []
     for name in sorted(BUILTIN_OBJECTS):

@@ -15,18 +15,22 @@ import collections
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import (load_sweep_records, refuse_unusable_output,
-                                                  run_script, script_parser, write_report)
+from tegrasp_drake.commands.script_output import (SWEEP_RESULTS_ADVICE, load_sweep_records,
+                                                  refuse_unusable_output, run_script,
+                                                  script_parser, write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
 
-def load_folders(folders, script: str = "compare_hands") -> list[dict]:
+def load_folders(folders, script: str = "compare_hands", names=None) -> list[dict]:
     """Each folder's {trial_id: (trial, result)} of finished records (sweep.load_records),
     all read before a word is said: SystemExit naming the first folder with a corrupt record
-    (script_output.load_sweep_records) or with no finished record."""
-    loaded = [(folder, load_sweep_records(script, folder)) for folder in folders]
+    (script_output.load_sweep_records) or with no finished record, by the script's argument
+    (`names`, one a folder: "linkage folder"; "results folder" without)."""
+    names = names or ["results folder"] * len(folders)
+    loaded = [(folder, load_sweep_records(script, folder, name))
+              for folder, name in zip(folders, names)]
     finished = [{trial_id: (record["trial"], record["result"])
                  for trial_id, record in records.records.items()
                  if record.get("status") == "ok"} for _, records in loaded]
@@ -103,11 +107,15 @@ def report(prismatic: dict, linkage: dict) -> str:
 def main(argv=None) -> int:
     parser = script_parser("compare_hands", __doc__)
     parser.add_argument("out", type=pathlib.Path)
-    parser.add_argument("linkage", type=pathlib.Path)
-    parser.add_argument("prismatic", type=pathlib.Path, nargs="+")
+    parser.add_input("linkage", type=pathlib.Path, what="linkage folder",
+                     advice=SWEEP_RESULTS_ADVICE)
+    parser.add_input("prismatic", type=pathlib.Path, nargs="+", what="prismatic folder",
+                     advice=SWEEP_RESULTS_ADVICE)
     args = parser.parse_args(argv)
     refuse_unusable_output("compare_hands", args.out)
-    linkage, *prismatic_runs = load_folders([args.linkage, *args.prismatic])
+    linkage, *prismatic_runs = load_folders(
+        [args.linkage, *args.prismatic], names=["linkage folder"]
+        + ["prismatic folder"] * len(args.prismatic))
     prismatic = {}
     for records in prismatic_runs:
         prismatic.update(records)

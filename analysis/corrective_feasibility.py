@@ -16,7 +16,8 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, script_parser
+from tegrasp_drake.commands.script_output import (CORRECTIVE_LOGS_ADVICE, ENSEMBLE_LOGS_ADVICE,
+                                                  run_script, script_parser)
 from tegrasp_drake.control.controller_config import GraspControllerConfig
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.correlation import event_scores_reference
@@ -92,8 +93,11 @@ def one_finger(grid, ensemble):
 
 def main(argv=None) -> int:
     parser = script_parser("corrective_feasibility", __doc__)
-    for name in ("corrective_logs", "ensemble_logs", "grid_logs"):
-        parser.add_argument(name, type=pathlib.Path)
+    for name, advice in (("corrective_logs", CORRECTIVE_LOGS_ADVICE),
+                         ("ensemble_logs", ENSEMBLE_LOGS_ADVICE),
+                         ("grid_logs", "give the --logs folder of a `tegrasp sweep`")):
+        parser.add_input(name, type=pathlib.Path, what=name.replace("_", " ") + " folder",
+                         advice=advice)
     args = parser.parse_args(argv)
     corrective, ensemble, grid = args.corrective_logs, args.ensemble_logs, args.grid_logs
     slip(corrective, ensemble)

@@ -11,8 +11,8 @@ folder of one controller pairs with another folder's controllers).
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import (load_sweep_records, run_script, script_parser,
-                                                  write_report)
+from tegrasp_drake.commands.script_output import (SWEEP_RESULTS_ADVICE, load_sweep_records,
+                                                  run_script, script_parser, write_report)
 from tegrasp_drake.sweep.detection_report import report_markdown
 from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
 
@@ -20,8 +20,9 @@ from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
 def main(argv=None) -> int:
     parser = script_parser("detection_quality", __doc__)
     parser.add_output("out", type=pathlib.Path, help="the Markdown report to write")
-    parser.add_argument("results", type=pathlib.Path, nargs="+",
-                        help="`tegrasp sweep` results folders (their records, trials/*.json)")
+    parser.add_input("results", type=pathlib.Path, nargs="+", what="results folder",
+                     advice=SWEEP_RESULTS_ADVICE,
+                     help="`tegrasp sweep` results folders (their records, trials/*.json)")
     parser.add_argument("--reference", default="open_loop",
                         help="the controller the others are paired against (default: open_loop)")
     parser.add_argument("--title", default="Detection quality and paired comparison",
@@ -31,7 +32,8 @@ def main(argv=None) -> int:
     for folder in args.results:
         loaded = load_sweep_records("detection_quality", folder)
         if not loaded.records:
-            raise SystemExit(f"detection_quality: {folder} holds no trial records")
+            raise SystemExit(f"detection_quality: {folder} holds no trial records; "
+                             f"{SWEEP_RESULTS_ADVICE}")
         records.update(loaded.records)
     controllers = [c for c in CONTROLLER_NAMES
                    if any(r["trial"]["controller"] == c for r in records.values())]

@@ -30,8 +30,9 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import (load_sweep_records, run_script, script_parser,
-                                                  write_report)
+from tegrasp_drake.commands.script_output import (SWEEP_LOGS_ADVICE, SWEEP_RESULTS_ADVICE,
+                                                  load_sweep_records, run_script,
+                                                  script_parser, write_report)
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.sweep.trial_function import trial_log_name
 
@@ -69,13 +70,11 @@ def trial_holds(record: dict, log) -> list[dict]:
 
 def main(argv=None) -> int:
     parser = script_parser("hold_creep", __doc__)
-    parser.add_argument("results", type=pathlib.Path)
-    parser.add_argument("logs", type=pathlib.Path)
+    parser.add_input("results", type=pathlib.Path, what="results folder",
+                     advice=SWEEP_RESULTS_ADVICE)
+    parser.add_input("logs", type=pathlib.Path, what="logs folder", advice=SWEEP_LOGS_ADVICE)
     parser.add_output("--out", type=pathlib.Path, default=None)
     args = parser.parse_args(argv)
-    for folder in (args.results, args.logs):
-        if not folder.is_dir():
-            raise SystemExit(f"hold_creep: {folder} is not a folder")
     loaded = load_sweep_records("hold_creep", args.results)
     ran = [r for r in loaded.records.values() if r.get("result") is not None]
     if not ran:

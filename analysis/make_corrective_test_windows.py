@@ -16,7 +16,8 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, script_parser
+from tegrasp_drake.commands.script_output import (CORRECTIVE_LOGS_ADVICE, ENSEMBLE_LOGS_ADVICE,
+                                                  run_script, script_parser)
 from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
@@ -41,8 +42,10 @@ def main(argv=None) -> int:
     from tegrasp_drake.recording.corrective_events import (CORRECTIVE_RUNS, HOLD_END_S,
                                                            LIFT_END_S, LIFT_START_S)
     parser = script_parser("make_corrective_test_windows", __doc__)
-    parser.add_argument("corrective_logs", type=pathlib.Path)
-    parser.add_argument("ensemble_logs", type=pathlib.Path)
+    parser.add_input("corrective_logs", type=pathlib.Path, what="corrective logs folder",
+                     advice=CORRECTIVE_LOGS_ADVICE)
+    parser.add_input("ensemble_logs", type=pathlib.Path, what="ensemble logs folder",
+                     advice=ENSEMBLE_LOGS_ADVICE)
     args = parser.parse_args(argv)
     corrective, ensemble = args.corrective_logs, args.ensemble_logs
     runs = {run.label: run for run in CORRECTIVE_RUNS}

@@ -10,7 +10,8 @@ from the current folder like every other path on a command line.
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import (load_sweep_records, refuse_unusable_output,
+from tegrasp_drake.commands.script_output import (SWEEP_RESULTS_ADVICE, load_sweep_records,
+                                                  refuse_unusable_input, refuse_unusable_output,
                                                   run_script, script_parser)
 from tegrasp_drake.figures.sweep import write_success_maps
 
@@ -23,6 +24,8 @@ def main(argv=None) -> int:
                              "RESULTS/success_maps.png)")
     args = parser.parse_args(argv)
     out = args.file or pathlib.Path(args.results) / "success_maps.png"
+    refuse_unusable_input("make_success_maps", args.results, "results folder",
+                          SWEEP_RESULTS_ADVICE)  # an input first, before the figure's folder
     refuse_unusable_output("make_success_maps", out, figure=True)  # before the records
     loaded = load_sweep_records("make_success_maps", args.results)
     if not any(record["status"] == "ok" for record in loaded.records.values()):

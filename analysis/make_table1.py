@@ -16,8 +16,8 @@ def main(argv=None) -> int:
     parser = script_parser("make_table1", __doc__)
     parser.add_argument("results", help="the --out folder of a sweep")
     args = parser.parse_args(argv)
-    refuse_unusable_folders("make_table1", args.results)  # it writes the tables there
-    loaded = load_sweep_records("make_table1", args.results)
+    loaded = load_sweep_records("make_table1", args.results)  # an input first, then
+    refuse_unusable_folders("make_table1", args.results)  # where it writes the tables
     if not loaded.records:
         raise SystemExit(f"make_table1: error: no trial records under {args.results}; give "
                          "the --out folder of `tegrasp sweep`")

@@ -19,7 +19,8 @@ import pathlib
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-from tegrasp_drake.commands.script_output import refuse_unusable_folders, run_script, script_parser
+from tegrasp_drake.commands.script_output import (EVENTS_ADVICE, refuse_unusable_folders,
+                                                  run_script, script_parser)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.ranges import SEED_RANGE
@@ -57,7 +58,8 @@ def trial_row(job) -> dict:
 
 def main(argv=None) -> int:
     parser = script_parser("measure_load_lift", __doc__)
-    parser.add_argument("--events", default=str(package_events_dir()))
+    parser.add_input("--events", default=str(package_events_dir()), what="--events folder",
+                     advice=EVENTS_ADVICE)
     parser.add_argument("--objects", nargs="+",
                         default=["box", "thick_cylinder", "thin_cylinder"])
     parser.add_number("--seed", type=integer_option, default=600, allowed=SEED_RANGE)

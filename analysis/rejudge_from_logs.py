@@ -14,7 +14,9 @@ import json
 import pathlib
 import sys
 
-from tegrasp_drake.commands.script_output import load_sweep_records, run_script, script_parser
+from tegrasp_drake.commands.script_output import (SWEEP_LOGS_ADVICE, load_sweep_records,
+                                                  refuse_unusable_input, run_script,
+                                                  script_parser)
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.sweep.records import TRIALS_FOLDER, make_record, write_record
 from tegrasp_drake.runs.trial import judge_trial
@@ -29,17 +31,15 @@ def main(argv=None) -> int:
     parser.add_argument("logs", type=pathlib.Path)
     parser.add_argument("out", type=pathlib.Path)
     args = parser.parse_args(argv)
+    loaded = load_sweep_records("rejudge_from_logs", args.results)  # the input first
     if args.out.exists():
         raise SystemExit(f"rejudge_from_logs: {args.out} exists; choose a new folder")
-    loaded = load_sweep_records("rejudge_from_logs", args.results)
     logs = {trial_id: args.logs / trial_log_name(record["trial"], record.get("events"))
             for trial_id, record in loaded.records.items() if record.get("result") is not None}
     if not logs:
         raise SystemExit(f"rejudge_from_logs: {args.results} holds no trial record with a "
                          "result (trials/*.json); give the --out folder of a `tegrasp sweep`")
-    if not args.logs.is_dir():
-        raise SystemExit(f"rejudge_from_logs: {args.logs} is not a folder; give the sweep's "
-                         "--logs folder")
+    refuse_unusable_input("rejudge_from_logs", args.logs, "logs folder", SWEEP_LOGS_ADVICE)
     if not any(path.is_file() for path in logs.values()):
         raise SystemExit(f"rejudge_from_logs: {args.logs} holds none of the {len(logs)} "
                          f"records' logs (e.g. {next(iter(logs.values())).name}); give the "

@@ -17,7 +17,8 @@ import sys
 
 import numpy as np
 
-from tegrasp_drake.commands.script_output import run_script, script_parser, write_report
+from tegrasp_drake.commands.script_output import (EVENTS_ADVICE, run_script, script_parser,
+                                                  write_report)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.ranges import Range
@@ -50,10 +51,12 @@ def armed_from(transitions, transition):
 
 def main(argv=None) -> int:
     parser = script_parser("roc_from_sweep_logs", __doc__)
-    parser.add_argument("logs", type=pathlib.Path)
+    parser.add_input("logs", type=pathlib.Path, what="logs folder",
+                     advice="give the --logs folder of a `tegrasp sweep`")
     parser.add_output("out", type=pathlib.Path)
     parser.add_argument("--controller", default="taxel_aware")
-    parser.add_argument("--events", default=str(package_events_dir()))
+    parser.add_input("--events", default=str(package_events_dir()), what="--events folder",
+                     advice=EVENTS_ADVICE)
     parser.add_number("--limit", type=integer_option, default=None, allowed=Range(low=1),
                       help="score at most this many logs (default: all)")
     parser.add_argument("--gripper-model", default="linkage",

@@ -16,7 +16,7 @@ import pathlib
 import sys
 
 from tegrasp_drake.rig.number_text import number_option
-from tegrasp_drake.commands.script_output import run_script, script_parser
+from tegrasp_drake.commands.script_output import EVENTS_ADVICE, run_script, script_parser
 from tegrasp_drake.rig.event_matching import EventMatchingConfig
 from tegrasp_drake.rig.ranges import field_range
 from tegrasp_drake.events.events_folder import load_memorized_events
@@ -37,8 +37,10 @@ def diagnose(run: pathlib.Path, events_dir, ra_envelope_hz: float) -> dict:
 
 def main(argv=None) -> int:
     parser = script_parser("transfer_diagnosis", __doc__)
-    parser.add_argument("events", help="the events folder the trials read")
-    parser.add_argument("runs", nargs="+", help="trial folders (tegrasp trial --out)")
+    parser.add_input("events", help="the events folder the trials read",
+                     what="events folder", advice=EVENTS_ADVICE)
+    parser.add_input("runs", nargs="+", help="trial folders (tegrasp trial --out)",
+                     what="trial folder", advice="give folders that `tegrasp trial --out` wrote")
     parser.add_number("--ra-envelope-hz", type=number_option, default=0.0,
                       allowed=field_range(EventMatchingConfig, "ra_envelope_hz"))
     args = parser.parse_args(argv)

@@ -19,7 +19,8 @@ def main(argv=None) -> int:
     parser = script_parser("transfer_matrix", __doc__)
     parser.add_argument("spec", help="the transfer spec (YAML)")
     # the reports are written into it: checked as an output before the records are read
-    parser.add_output("results", folder=True, help="the folder `tegrasp transfer` wrote")
+    parser.add_output("results", folder=True, help="the folder `tegrasp transfer` wrote",
+                      reads=("results folder", "give the --out folder of `tegrasp transfer`"))
     parser.add_argument("--format", choices=FIGURE_FORMATS, default="png")
     args = parser.parse_args(argv)
     spec = LoadTransferSpec(args.spec)  # a ConfigError: run_script's one line, EXIT_ERROR

@@ -23,8 +23,11 @@ MAX_PAGE_BYTES = 4_000_000
 
 def main(argv=None) -> int:
     parser = script_parser("update_results_page", __doc__)
-    # read and written again: checked as an output before the results folders are read
-    parser.add_output("page", nargs="?", default=str(PAGE))
+    # read and written again: checked as an input, then as an output, before the
+    # results folders are read
+    parser.add_output("page", nargs="?", default=str(PAGE),
+                      reads=("results page", "give the Markdown results page, e.g. "
+                                             "docs/results.md"))
     args = parser.parse_args(argv)
     path = pathlib.Path(args.page)
     try:  # a folder, FIFO or device refused before it is opened for reading (no blocking)

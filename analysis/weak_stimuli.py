@@ -25,8 +25,10 @@ import pathlib
 import sys
 
 from tegrasp_drake.sweep.missed_event_report import record_has_waits, report_markdown, sweep_misses
-from tegrasp_drake.commands.script_output import (load_sweep_records, run_script, script_parser,
-                                                  write_report)
+from tegrasp_drake.commands.script_output import (SWEEP_LOGS_ADVICE, SWEEP_RESULTS_ADVICE,
+                                                  load_sweep_records, refuse_unusable_input,
+                                                  run_script,
+                                                  script_parser, write_report)
 from tegrasp_drake.rig.files import folder_problem
 
 
@@ -40,9 +42,8 @@ def main(argv=None) -> int:
     parser.add_argument("--controller", default="memorized",
                         help="the event-triggered controller whose trials to look at")
     args = parser.parse_args(argv)
-    for folder, what in ((args.results, "results"), (args.logs, "logs")):
-        if not folder.is_dir():
-            raise SystemExit(f"weak_stimuli: {what} folder {folder} does not exist")
+    refuse_unusable_input("weak_stimuli", args.results, "results folder", SWEEP_RESULTS_ADVICE)
+    refuse_unusable_input("weak_stimuli", args.logs, "logs folder", SWEEP_LOGS_ADVICE)
     out_problem = None if args.out is None else (
         "is a folder" if args.out.is_dir() else
         None if args.out.parent.is_dir() and folder_problem(args.out.parent) is None

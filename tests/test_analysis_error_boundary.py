@@ -76,7 +76,7 @@ def test_script_refuses_a_junk_path_in_one_line(name, tmp_path):
     assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
     assert "Traceback" not in done.stderr and "internal error" not in done.stderr, done.stderr
     assert len(lines) == 1, done.stderr
-    assert lines[0].startswith(f"{name}: "), lines  # which script it was
+    assert lines[0].startswith(f"{name}: error: "), lines  # which script it was, an error
 
 
 @pytest.mark.parametrize("name", SCRIPTS)
@@ -231,3 +231,83 @@ def test_a_report_printed_to_a_full_disk_names_standard_output(tmp_path):
     assert lines == ["detection_quality: error: cannot write to standard output: No space "
                      "left on device"], done.stderr
     assert (tmp_path / "dq.md").is_file()  # the report file was written before the print
+
+
+# Rule: a script's input (a folder, or a file, it reads) that is missing or of the other kind
+# is named by the script's own argument ("results folder", "--events folder"), never by a
+# function's parameter (`load_records: argument 'out_dir'`), with what to give; it is checked
+# before any output, so an input that cannot be read is never blamed on writing.
+SWEEP = "give the --out folder of `tegrasp sweep`"
+EVENTS = "give a folder of memorized events (`tegrasp record-events --out`)"
+CORRECTIVE = "give the folder analysis/record_corrective_events.py wrote"
+ENSEMBLE = "give the folder analysis/record_ensemble_events.py wrote"
+INPUTS = [  # (script, its arguments with IN the input and OUT an output, what, advice)
+    ("make_table1", ["IN"], "results folder", SWEEP),
+    ("make_success_maps", ["IN"], "results folder", SWEEP),
+    ("detection_quality", ["OUT/dq.md", "IN"], "results folder", SWEEP),
+    ("compare_geometry", ["OUT/cg.md", "IN", "IN"], "reference folder", SWEEP),
+    ("compare_hands", ["OUT/ch.md", "IN", "IN"], "linkage folder", SWEEP),
+    ("hold_creep", ["IN", "IN", "--out", "OUT/hc.md"], "results folder", SWEEP),
+    ("rejudge_from_logs", ["IN", "IN", "OUT/r"], "results folder", SWEEP),
+    ("weak_stimuli", ["IN", "IN"], "results folder", SWEEP),
+    ("roc_from_sweep_logs", ["IN", "OUT/roc.md"], "logs folder",
+     "give the --logs folder of a `tegrasp sweep`"),
+    ("choose_ensemble_thresholds", ["IN", "OUT/t.md"], "logs folder", ENSEMBLE),
+    ("choose_corrective_thresholds", ["IN", "IN", "OUT/t.md"], "corrective logs folder",
+     CORRECTIVE),
+    ("make_corrective_test_windows", ["IN", "IN"], "corrective logs folder", CORRECTIVE),
+    ("corrective_feasibility", ["IN", "IN", "IN"], "corrective logs folder", CORRECTIVE),
+    ("measure_load_lift", ["--events", "IN"], "--events folder", EVENTS),
+    ("transfer_diagnosis", ["IN", "IN"], "events folder", EVENTS),
+    ("transfer_matrix", ["spec.yaml", "IN"], "results folder",
+     "give the --out folder of `tegrasp transfer`"),
+]
+
+
+@pytest.mark.parametrize("kind", ["missing", "a file"])
+@pytest.mark.parametrize("name, arguments, what, advice", INPUTS,
+                         ids=[row[0] for row in INPUTS])
+def test_an_input_folder_is_named_by_the_scripts_own_argument(name, arguments, what, advice,
+                                                              kind, tmp_path):
+    given = tmp_path / "in"
+    if kind == "a file":
+        given.write_text("not a folder\n")
+    (tmp_path / "spec.yaml").write_text("base: {}\n")
+    (tmp_path / "out").write_text("a file where the outputs' folder belongs\n")
+    argv = [a.replace("IN", str(given)).replace("OUT", str(tmp_path / "out"))
+            for a in arguments]
+    done = run_script(name, argv, tmp_path)
+    why = "does not exist" if kind == "missing" else "is a file, not a folder"
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    assert done.stderr == f"{name}: error: {what} '{given}' {why}; {advice}\n", done.stderr
+    assert "argument '" not in done.stderr and "cannot write" not in done.stderr
+
+
+def test_make_table1_names_its_results_argument_not_load_records(tmp_path):
+    done = run_script("make_table1", [str(tmp_path / "nonexist")], tmp_path)
+    assert done.returncode == EXIT_ERROR
+    assert done.stderr == (f"make_table1: error: results folder '{tmp_path / 'nonexist'}' does "
+                           "not exist; give the --out folder of `tegrasp sweep`\n"), done.stderr
+
+
+def test_an_empty_results_folder_says_it_holds_no_records(tmp_path):
+    (tmp_path / "empty").mkdir()
+    done = run_script("make_table1", [str(tmp_path / "empty")], tmp_path)
+    assert done.returncode == EXIT_ERROR
+    assert done.stderr.startswith("make_table1: error: no trial records under "), done.stderr
+
+
+@pytest.mark.parametrize("name, arguments, what", [
+    ("update_results_page", ["IN"], "results page 'IN' is a folder, not a file; give the "
+                                    "Markdown results page"),
+    ("grip_rise", ["IN"], "trial log 'IN' is a folder, not a file"),
+    ("transfer_matrix", ["IN", "IN"], "IN: cannot read the transfer spec: it is a folder"),
+])
+def test_a_folder_where_an_input_file_belongs_is_named(name, arguments, what, tmp_path):
+    given = tmp_path / "in"
+    given.mkdir()
+    done = run_script(name, [a.replace("IN", str(given)) for a in arguments], tmp_path)
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    assert done.stderr.startswith(f"{name}: error: {what.replace('IN', str(given))}"), \
+        done.stderr
+    assert "cannot write" not in done.stderr and len(done.stderr.splitlines()) == 1

@@ -30,16 +30,26 @@ def output_arguments(junk: str, out: str) -> dict[str, list[str]]:
             "update_results_page": [out]}  # the page it reads, written again
 
 
+# A path a script reads and writes again (the results page, transfer_matrix's results folder)
+# is an input first: one that is no file (or folder) to read is named as the input it is.
+READ_AND_WRITTEN = {"update_results_page": "results page '/dev/full' is a device, not a file",
+                    "transfer_matrix": "results folder '/dev/full' is a device, pipe or socket, "
+                                       "not a folder"}
+
+
 @pytest.mark.parametrize("name", sorted(output_arguments("j", "o")))
 def test_an_output_that_cannot_be_written_is_refused_before_the_inputs_are_read(name, tmp_path):
-    junk = tmp_path / "junk"
-    junk.write_bytes(b"\xff\xfe\x00junk\x80" * 64)
+    junk = tmp_path / "junk"  # a folder, as the inputs are, whose content is junk
+    junk.mkdir()
+    (junk / "junk").write_bytes(b"\xff\xfe\x00junk\x80" * 64)
     done = run_script(name, output_arguments(str(junk), "/dev/full")[name], tmp_path)
     lines = done.stderr.strip().splitlines()
     assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
-    assert len(lines) == 1 and lines[0].startswith(f"{name}: "), done.stderr
+    assert len(lines) == 1 and lines[0].startswith(f"{name}: error: "), done.stderr
     assert "/dev/full" in lines[0], lines
-    if name != "make_success_maps":  # a figure's name is checked first (no format)
+    if name in READ_AND_WRITTEN:
+        assert READ_AND_WRITTEN[name] in lines[0], lines
+    elif name != "make_success_maps":  # a figure's name is checked first (no format)
         assert "cannot write" in lines[0], lines
 
 

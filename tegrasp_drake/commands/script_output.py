@@ -2,6 +2,7 @@
 written ends the script with one line naming it), and their one error boundary, run_script."""
 
 import argparse
+import os
 import pathlib
 import signal
 import sys
@@ -43,18 +44,33 @@ class _ScriptParser(UsageParser):
         super().__init__(prog=f"{script}.py", **keywords)
         self._script = script
         self._outputs = []  # (destination, kind) of each add_output argument
+        self._inputs = []  # (destination, what, advice, folder) of each add_input argument
         self._ranges = []  # (destination, option, allowed) of each add_number argument
         self._workers_default = None  # add_workers's default, once it is added
 
-    def add_output(self, *names, figure: bool = False, folder: bool = False, **keywords):
+    def add_output(self, *names, figure: bool = False, folder: bool = False,
+                   reads: tuple[str, str] | None = None, **keywords):
         """add_argument for a file the script writes (a report; a figure when `figure`), or
         a folder it writes in (`folder`: its reports, its cache): parse_args refuses one it
-        cannot write (refuse_unusable_output, refuse_unusable_folders) before any work."""
+        cannot write (refuse_unusable_output, refuse_unusable_folders) before any work. One
+        it also reads first (`reads`: what its errors call it, and the advice) is checked as
+        an input first (add_input)."""
         if figure and folder:
             raise ValueError("add_output: an output is a figure or a folder, not both")
         action = self.add_argument(*names, **keywords)
+        if reads:
+            self._inputs.append((action.dest, *reads, folder))
         self._outputs.append((action.dest, "figure" if figure else
                               "folder" if folder else "report"))
+        return action
+
+    def add_input(self, *names, what: str, advice: str, folder: bool = True, **keywords):
+        """add_argument for a folder (a file unless `folder`) the script reads, which its
+        errors call `what` ("results folder"): parse_args refuses one that is missing or of
+        the other kind (refuse_unusable_input, with `advice`) before any output is checked,
+        so that an input that cannot be read is never blamed on writing."""
+        action = self.add_argument(*names, **keywords)
+        self._inputs.append((action.dest, what, advice, folder))
         return action
 
     def add_number(self, *names, allowed, **keywords):
@@ -92,6 +108,11 @@ class _ScriptParser(UsageParser):
             setattr(parsed, destination, _plain_numbers(values))  # the typed text no further
         if self._workers_default is not None:
             parsed.workers = self._workers_within_cores(parsed.workers, parsed.oversubscribe)
+        for destination, what, advice, folder in self._inputs:
+            paths = getattr(parsed, destination)
+            for path in paths if isinstance(paths, list) else [paths]:
+                if path is not None:
+                    refuse_unusable_input(self._script, path, what, advice, folder=folder)
         for destination, kind in self._outputs:
             path = getattr(parsed, destination)
             if path is None:
@@ -209,9 +230,13 @@ def _run_guarded(main, script: str, argv=None) -> int:
 
 
 def _with_prefix(script: str, message: str) -> str:
-    """`message`, a line ending the script, led by `<script>: ` (`<script>: error: ` when it
-    names no script), so that every line a script ends with says which script it was."""
-    return message if message.startswith(f"{script}: ") else f"{script}: error: {message}"
+    """`message`, a line ending the script, led by `<script>: error: ` (after the script's
+    name when it names it), so that every line a script ends with says which script it was
+    and that it is an error, as every `tegrasp` error line does."""
+    lead = f"{script}: error: "
+    if message.startswith(lead):
+        return message
+    return lead + message.removeprefix(f"{script}: ")
 
 
 def _refused(script: str, message: str) -> int:
@@ -219,10 +244,45 @@ def _refused(script: str, message: str) -> int:
     return EXIT_ERROR
 
 
-def load_sweep_records(script: str, results):
-    """The records (sweep.LoadedRecords) of the sweep folder `results`; SystemExit with one
-    line if any is corrupt (LoadedRecords.corrupt_problem, as `tegrasp plot` refuses it)."""
+# What a script tells the user to give for a folder it reads.
+SWEEP_RESULTS_ADVICE = "give the --out folder of `tegrasp sweep`"
+SWEEP_LOGS_ADVICE = "give the --logs folder of the sweep that wrote the records"
+EVENTS_ADVICE = "give a folder of memorized events (`tegrasp record-events --out`)"
+CORRECTIVE_LOGS_ADVICE = "give the folder analysis/record_corrective_events.py wrote"
+ENSEMBLE_LOGS_ADVICE = "give the folder analysis/record_ensemble_events.py wrote"
+
+
+def input_problem(path, *, folder: bool = True) -> str | None:
+    """Why `path`, a folder (a file unless `folder`) a script reads, cannot be read as one,
+    in words that follow it ("does not exist", "is a file, not a folder", "cannot be read
+    (permission denied)"), or None; nothing is opened."""
+    from tegrasp_drake.rig.api_boundary import INPUT_FOLDER
+    from tegrasp_drake.rig.files import file_problem
+    problem = INPUT_FOLDER.problem(path) if folder else file_problem(path)
+    if problem is None and not os.access(path, os.R_OK | (os.X_OK if folder else 0)):
+        problem = "cannot be read (permission denied)"
+    return problem.split(";")[0] if problem else None
+
+
+def refuse_unusable_input(script: str, path, what: str, advice: str, *,
+                          folder: bool = True) -> None:
+    """SystemExit with one line, `<script>: error: <what> '<path>' <why>; <advice>`, unless
+    `path` can be read as a folder (a file unless `folder`): input_problem. `what` names the
+    script's own argument ("results folder", "--events folder"), never a function's."""
+    problem = input_problem(path, folder=folder)
+    if problem:
+        raise SystemExit(f"{script}: error: {what} {shown(os.fspath(path))} {problem}; "
+                         f"{advice}")
+
+
+def load_sweep_records(script: str, results, what: str = "results folder",
+                       advice: str = SWEEP_RESULTS_ADVICE):
+    """The records (sweep.LoadedRecords) of the sweep folder `results`, which the script's
+    argument `what` names; SystemExit with one line if it is no folder to read
+    (refuse_unusable_input) or any record is corrupt (LoadedRecords.corrupt_problem, as
+    `tegrasp plot` refuses it)."""
     from tegrasp_drake.sweep.records import load_records
+    refuse_unusable_input(script, results, what, advice)
     loaded = load_records(results)
     problem = loaded.corrupt_problem(results)
     if problem:

@@ -80,7 +80,7 @@ def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -
                         help="allow --workers above the number of cores")
     parser.add_argument("--out", default=default_out, metavar="DIR",
                         help=f"results folder; re-running resumes it (default: {default_out})")
-    parser.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+    parser.add_argument("--scheduler", metavar="tcp://HOST:PORT", type=scheduler_option,
                         help="run on this Dask distributed scheduler (the 'dask' extra)")
     parser.add_argument("--no-progress", action="store_true",
                         help="no progress bar (there is none off a terminal either)")
@@ -256,27 +256,87 @@ DASK_PROTOCOLS = ("tcp",)
 OTHER_DASK_PROTOCOLS = ("tls", "ucx", "ws", "wss")
 
 
-def scheduler_problem(address: str) -> str | None:
-    """Why `address` is not a Dask scheduler address tcp://HOST:PORT, or None. The protocol
-    is read case-insensitively, as connect_scheduler passes it on (in lower case)."""
+SCHEDULER_FORM = "give tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786"
+
+
+def _scheduler_parts(address: str):
+    """(URL parts, HOST, PORT text) of `address` read as tcp://HOST:PORT, or (None, words)
+    when it has no such form (scheduler_form_problem); (None, None) for another protocol,
+    whose address scheduler_problem refuses by its protocol, not its form."""
     import urllib.parse
     if not address.strip():
-        return "is empty"
+        return None, "the address is blank"
+    scheme, separator, _ = address.partition("://")
+    if not separator or not scheme:
+        return None, "it has no PROTOCOL:// (a Dask scheduler's address is a URL)"
+    if scheme.lower() not in DASK_PROTOCOLS:
+        return None, None
     try:
         parts = urllib.parse.urlsplit(address)
-        port = parts.port
-    except ValueError as e:
-        return f"is not an address ({e})"
-    if parts.scheme in OTHER_DASK_PROTOCOLS:
-        return (f"names the protocol {parts.scheme}://; tegrasp connects to a Dask scheduler "
+    except ValueError:  # an unclosed '[' of an IPv6 HOST
+        return None, "its HOST has a '[' without its ']'"
+    where = parts.netloc.rpartition("@")[2]
+    if where.startswith("["):
+        host, _, rest = where[1:].partition("]")
+        if rest and not rest.startswith(":"):
+            return None, f"{shown(rest)} follows its [HOST] where ':PORT' belongs"
+        port = rest[1:] if rest else None
+    else:
+        host, colon, port = where.partition(":")
+        port = port if colon else None
+    if not host:
+        return None, "it has no HOST"
+    if not port:
+        return None, "it has no port"
+    if not (port.isascii() and port.isdecimal()):
+        return None, f"port {shown(port)} is not a number"
+    return parts, host, port
+
+
+def scheduler_form_problem(address: str) -> str | None:
+    """Why `address` does not parse as a scheduler address PROTOCOL://HOST:PORT (a command
+    line that does not parse: exit 2), in words that follow "--scheduler 'ADDRESS': ", or
+    None; what it names (a protocol, a port's range) is scheduler_problem's."""
+    parsed = _scheduler_parts(address)
+    return f"{parsed[1]}; {SCHEDULER_FORM}" if parsed[0] is None and parsed[1] else None
+
+
+def scheduler_option(text: str) -> str:
+    """argparse's type of --scheduler: the address as given, or a usage error (exit 2) when
+    it does not parse (scheduler_form_problem); '' is left to the refusal of empty values,
+    text holding a control character to usage_parser.text_argument_problem (exit 1)."""
+    from tegrasp_drake.rig.typed_yaml import text_problem
+    problem = scheduler_form_problem(text) if text and not text_problem(text) else None
+    if problem:  # argparse puts "argument --scheduler: " before it
+        raise argparse.ArgumentTypeError(f"{shown(text)}: {problem}")
+    return text
+
+
+def scheduler_problem(address: str) -> str | None:
+    """Why `address` is not a Dask scheduler address tcp://HOST:PORT, or None: one that does
+    not parse (scheduler_form_problem), or names what no scheduler is reached at. The
+    protocol is read case-insensitively, as connect_scheduler passes it on (in lower case)."""
+    if not address.strip():
+        return "is empty"
+    form = scheduler_form_problem(address)
+    if form:
+        return f"is not an address: {form}"
+    protocol = address.partition("://")[0].lower()
+    if protocol in OTHER_DASK_PROTOCOLS:
+        return (f"names the protocol {protocol}://; tegrasp connects to a Dask scheduler "
                 "over tcp:// only (a `dask scheduler` started without --protocol listens on "
                 "it), e.g. tcp://127.0.0.1:8786")
-    if parts.scheme not in DASK_PROTOCOLS or not parts.hostname or port is None:
+    if protocol not in DASK_PROTOCOLS:
         return ("is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL tcp), "
                 "e.g. tcp://127.0.0.1:8786")
+    parts, _, port_text = _scheduler_parts(address)
+    port = int(port_text) if len(port_text) <= 6 else 1 << 20
     if port == 0:  # port 0 asks the system for any free port when listening: no destination
         return ("names port 0, which no scheduler listens on; give the port `dask scheduler` "
                 "prints (8786 unless --port)")
+    if port > 65535:
+        return (f"names port {shorten(port_text)}, past the last TCP port (65535); give the "
+                "port `dask scheduler` prints (8786 unless --port)")
     extra = [name for name, value in (("a path", parts.path), ("a query", parts.query),
                                       ("a fragment", parts.fragment),
                                       ("a user", parts.username)) if value]

@@ -140,11 +140,59 @@ def _providers_text(providers) -> str:
     return " or ".join(f"{provider}://" for provider in providers)
 
 
+LCM_URL_EXAMPLE = "udpm://239.255.76.67:7667?ttl=0"
+
+
+def lcm_url_form_problem(url: str) -> str | None:
+    """Why `url` does not parse as an LCM URL, PROVIDER://ADDRESS[?OPTION=VALUE&...] (for
+    udpm://, ADDRESS an IPv4 GROUP[:PORT] and ttl a number), in words that follow
+    "'URL': ", or None: a command line's --lcm-url that does not parse (exit 2). What a URL
+    that parses names (a provider, a port or ttl out of range, an option) is lcm_url_problem's."""
+    provider = lcm_provider(url)
+    if not provider:
+        return f"it names no provider (PROVIDER://ADDRESS); give e.g. {LCM_URL_EXAMPLE}"
+    if provider != "udpm":
+        return None
+    address, _, query = url.split("://", 1)[1].partition("?")
+    form = f"give udpm://GROUP:PORT, e.g. {LCM_URL_EXAMPLE}"
+    for option in query.split("&") if query else ():
+        key, _, value = option.partition("=")
+        if key == "ttl" and not _decimal(value):
+            return f"ttl {shown(value)} is not a number; {form}"
+    host, colon, port = address.partition(":")
+    try:
+        ipaddress.IPv4Address(host)
+    except ValueError:
+        if host:  # none: refused as no multicast group, by lcm_url_problem
+            return f"address {shown(host)} is not an IPv4 address; {form}"
+    if colon and not _decimal(port):
+        return f"port {shown(port)} is not a number; {form}"
+    return None
+
+
+def lcm_url_option(text: str) -> str:
+    """argparse's type of --lcm-url: the URL as given, or a usage error (exit 2) when it does
+    not parse (lcm_url_form_problem). The default LCM_DEFAULT_URL set is the environment's,
+    not the command line's: checked later, naming the variable (lcm_url_origin); so is text
+    holding a control character (usage_parser.text_argument_problem names it, exit 1)."""
+    import argparse
+    from tegrasp_drake.rig.typed_yaml import text_problem
+    given = lcm_url_origin(text, "--lcm-url") == "--lcm-url" and not text_problem(text)
+    problem = lcm_url_form_problem(text) if given else None
+    if problem:  # argparse puts "argument --lcm-url: " before it
+        raise argparse.ArgumentTypeError(f"{shown(text)}: {problem}")
+    return text
+
+
 def lcm_url_problem(url: str) -> str | None:
     """Why LCM cannot open `url` as a bus, or None (check_ranges refuses an empty one, which
     LCM would take for its default bus). A provider other than SHARED_LCM_PROVIDERS and
     IN_PROCESS_LCM_PROVIDERS is refused from the text, before LCM opens anything. The
-    library's reason, printed on file descriptor 2, is captured so a bad URL is one line."""
+    library's reason, printed on file descriptor 2, is captured so a bad URL is one line.
+    A URL that does not parse is said so first (lcm_url_form_problem)."""
+    form = lcm_url_form_problem(url)
+    if form:
+        return f"does not parse as an LCM URL: {form}"
     provider = lcm_provider(url)
     if provider not in SHARED_LCM_PROVIDERS + IN_PROCESS_LCM_PROVIDERS:
         return (f"is not an LCM bus URL: {_provider_named(provider)}; accepted: "
@@ -240,6 +288,9 @@ def shared_lcm_url_problem(url: str) -> str | None:
     it: lcm_url_problem), or None: what a command that talks to another process over LCM
     (`tegrasp hardware` to the arm's driver, `tegrasp emulate` to `tegrasp hardware`) asks of
     its URL. Library code and tests may still run both ends in one process on memq://."""
+    form = lcm_url_form_problem(url)
+    if form:
+        return f"does not parse as an LCM URL: {form}"
     provider = lcm_provider(url)
     if provider in IN_PROCESS_LCM_PROVIDERS:
         return (f"is a bus inside this one process ({provider}://), which no other process "

@@ -31,6 +31,13 @@ def undecoded_as_bytes(text: str) -> str:
     return _UNDECODED.sub(lambda m: repr(os.fsencode(m.group()))[2:-1], text)
 
 
+def undecoded_byte(text: str) -> tuple[int, int] | None:
+    """(position, byte) of the first byte in `text` that a command-line argument, a path or
+    an environment value held and could not decode as UTF-8 (a surrogate), or None."""
+    found = _UNDECODED.search(text)
+    return None if found is None else (found.start(), os.fsencode(found.group())[0])
+
+
 def _repr_bytes(text: str) -> str:
     """A repr's `\\udcff` (an undecoded byte) as the byte's `\\xff`."""
     return _UNDECODED_REPR.sub(r"\1\\x\2", text)

@@ -25,7 +25,7 @@ import yaml
 from tegrasp_drake.rig.core_schema_yaml import (CORE_FLOAT, FLOAT_TAG, INT_TAG, compose,
                                                 construct, yaml11_only_boolean,
                                                 yaml11_only_number)
-from tegrasp_drake.rig.echo import shorten, shown
+from tegrasp_drake.rig.echo import shorten, shown, undecoded_byte
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.number_text import float_beyond_problem, number_text
 from tegrasp_drake.rig.ranges import number_problem, python_scalar, range_of
@@ -365,8 +365,15 @@ def loaded_with_overrides(load, file_source: str, overrides: typing.Sequence[str
 def assignment_problem(assignment: str, example: str = "object.mass") -> str | None:
     """Why `assignment` is no `KEY=VALUE` with KEY a dotted field name (such as `example`),
     each of its names given (not '', '.a', 'a..b' or 'a.'), in words that follow
-    "--set 'ASSIGNMENT': "; None if it is one."""
+    "--set 'ASSIGNMENT': "; None if it is one. A byte that is not UTF-8 (an argument's
+    surrogate, `$'\\xff'` in a shell) is refused first, by its byte, key or value alike."""
     key, equals, _ = assignment.partition("=")
+    undecoded = undecoded_byte(assignment)
+    if undecoded:
+        position, byte = undecoded
+        part = "key" if not equals or position < len(key) else "value"
+        return (f"byte 0x{byte:02x} (character {position + 1}, in the {part}) is not UTF-8; "
+                f"give the {part} in UTF-8 text")
     if not equals or any(not name.strip() for name in key.split(".")):
         return f"expected KEY=VALUE with KEY a dotted field name such as {example}"
     return None

@@ -211,7 +211,24 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
     numbers a log's events from 0, so the first one read is checked against 0 as each
     later one is against the one before: a corrupt first frame is counted as lost as one
     further on is. A length is never allocated: events are slices of the bytes read."""
-    data = read_bounded(path, MAX_RUN_LOG_BYTES)
+    return _scan_lcm_bytes(read_bounded(path, MAX_RUN_LOG_BYTES))
+
+
+def _not_lcm_log_problem(data: bytes) -> str | None:
+    """Why bytes that hold no LCM event are no LCM log at all, in words that follow "run log
+    'FILE' ": empty, or no event's sync word anywhere (a text file, an image), unlike a log
+    whose only event is corrupt or cut off (its bytes start as the sync word does); or
+    None."""
+    if not data:
+        return "is empty (0 bytes), not an LCM log"
+    if LCM_LOG_START in data or LCM_LOG_START.startswith(data):
+        return None
+    return (f"is not an LCM log: its {len(data)} bytes hold no LCM event's sync word "
+            f"0x{LCM_SYNC:08X}")
+
+
+def _scan_lcm_bytes(data: bytes) -> tuple[list, list[str]]:
+    """scan_lcm_log's events and damage of an LCM log's bytes."""
     events = []
     corrupt_regions = corrupt_bytes = lost = 0
     renumbered = []  # file positions of events whose numbers go back or are damaged
@@ -534,9 +551,14 @@ def read_run_log(path) -> RunLog:
     decoded = {channel: [] for channel in MESSAGE_TYPES}
     counts = {}
     try:
-        events, damage = scan_lcm_log(path)
+        data = read_bounded(path, MAX_RUN_LOG_BYTES)
     except OSError as e:
         raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
+    events, damage = _scan_lcm_bytes(data)
+    not_a_log = None if events else _not_lcm_log_problem(data)
+    if not_a_log:
+        raise RunLogError(f"run log '{path}' {not_a_log}; give a log written by `tegrasp "
+                          "hardware --log FILE` or lcm-logger")
     if not events:
         raise RunLogError(f"run log '{path}' holds no LCM message"
                           + (f" ({'; '.join(damage)})" if damage else ""))

@@ -313,9 +313,11 @@ def test_environment_and_option_values_are_checked_before_a_library_gets_them(tm
         sys.stdout = saved
     ascii_out.flush()
     assert ascii_out.buffer.getvalue() == b"wrote o/\\xe9t\\xe9_\\xfc.png\n"
-    for option in ("ttl=zero", "ttl=0&recv_buf_size=lots"):
+    for option, words in (("ttl=zero", "does not parse as an LCM URL: ttl 'zero' is not a "
+                                       "number"),
+                          ("ttl=0&recv_buf_size=lots", "Invalid value for")):
         problem = lcm_url_problem(f"udpm://239.255.76.67:8793?{option}")
-        assert problem and "Invalid value for" in problem, problem
+        assert problem and words in problem, problem
     assert lcm_url_problem("udpm://239.255.76.67:8793?ttl=0") is None
     for fault in ("14@1e9", "14@601", "14@-1"):
         with pytest.raises(SystemExit) as refused:
@@ -616,6 +618,42 @@ def test_a_malformed_set_is_refused_as_a_command_line_that_does_not_parse(
     assert text.startswith(
         f"tegrasp {command}: error: argument {option}: '{assignment}': expected KEY=VALUE with "
         f"KEY a dotted field name such as {example} (see "), text
+
+
+# Rule: a byte that is not UTF-8 in a --set or --config-set (`$'object.mass=\xff'`, held by
+# Python as the surrogate \udcff) is refused first, as the byte the user gave, in the key or
+# the value alike, as a command line that does not parse (exit 2); PyYAML's "#xdcff" or an
+# unknown field 'object.ma\xffss' is never the reason.
+@pytest.mark.parametrize("command, option, key", [
+    ("trial", "--set", "object.mass"), ("record-events", "--set", "object.mass"),
+    ("sweep", "--set", "gripper.pad_friction"), ("hardware", "--config-set", "arm.lcm_url")])
+def test_a_byte_that_is_not_utf8_in_a_set_is_named_as_given(command, option, key, capfd):
+    code, text = run_cli([command, option, f"{key}=\udcff"], capfd)
+    assert code == 2, text
+    assert text.count("\n") == 1 and "xdcff" not in text and "udcff" not in text, text
+    assert text.startswith(
+        f"tegrasp {command}: error: argument {option}: '{key}=\\xff': byte 0xff (character "
+        f"{len(key) + 2}, in the value) is not UTF-8; give the value in UTF-8 text (see "
+        f"tegrasp {command} --help)"), text
+    code, text = run_cli([command, option, "object.ma\udcffss=1"], capfd)
+    assert code == 2 and "unknown field" not in text, text
+    assert "'object.ma\\xffss=1': byte 0xff (character 10, in the key) is not UTF-8; give " \
+           "the key in UTF-8 text (see" in text, text
+
+
+def test_a_byte_that_is_not_utf8_in_a_set_is_named_from_a_shell(tmp_path):
+    done = tegrasp_in_child_process(["trial", "--set", "object.mass=\udcc3(",
+                                     "--out", str(tmp_path / "t")])
+    assert done.returncode == 2, done.stderr
+    assert done.stderr == ("tegrasp trial: error: argument --set: 'object.mass=\\xc3(': byte "
+                           "0xc3 (character 13, in the value) is not UTF-8; give the value in "
+                           "UTF-8 text (see tegrasp trial --help)\n"), done.stderr
+    assert not (tmp_path / "t").exists()
+
+
+def test_a_byte_that_is_not_utf8_given_to_the_api_is_named_the_same_way():
+    refusal(lambda: T.LoadScenario(overrides=["object.mass=\udcff"]),
+            "--set 'object.mass=", "byte 0xff (character 13, in the value) is not UTF-8")
 
 
 def test_an_empty_set_keeps_its_own_refusal_and_code(capfd):

@@ -30,7 +30,9 @@ from tests.bad_input.probes import assert_one_line_error, refusal, run_cli
     ("watchdog: {arm_timeout: 0}\n", "field 'watchdog.arm_timeout' must be positive"),
     ("arm: {lcm_url: 'udpm://239.255.76.67:99999?ttl=0'}\n",
      "field 'arm.lcm_url' has the port '99999', which is not a number from 1 to 65535"),
-    ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' is not an LCM bus URL"),
+    ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' does not parse as an LCM URL: it "
+                                  "names no provider (PROVIDER://ADDRESS)"),
+    ("arm: {lcm_url: 'nope://'}\n", "field 'arm.lcm_url' is not an LCM bus URL"),
     ("watchdog: {arm_timeout: 0.05\n", "not valid YAML"),
     ("scheduling: deadline\n", "field 'scheduling' must be one of 'fifo', 'nice', 'normal'"),
 ])

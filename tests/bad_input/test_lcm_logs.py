@@ -488,3 +488,33 @@ def test_a_replay_against_another_objects_events_says_whose_run_it_was(genuine, 
     assert code == 0, err
     assert "the run was of the object 'box'" in err and err.count("\n") == 1
     assert "object thin_cylinder's events (the run's object: box)" in out
+
+
+# Rule: a file with no LCM event's sync word anywhere (a few bytes of text, an image) or with
+# nothing in it is no LCM log, said so with its size and what to give, never called a log
+# cut short; a real log whose last (or only) event is cut keeps the truncated wording.
+@pytest.mark.parametrize("content, words", [
+    (b"abc", "is not an LCM log: its 3 bytes hold no LCM event's sync word 0xEDA1DA01; "),
+    (b"not a log\n" * 30, "is not an LCM log: its 300 bytes hold no LCM event's sync word "
+                         "0xEDA1DA01; "),
+    (b"", "is empty (0 bytes), not an LCM log; ")])
+def test_a_file_that_is_no_lcm_log_is_named_so_not_truncated(content, words, tmp_path, capfd):
+    path = tmp_path / "short2.bin"
+    path.write_bytes(content)
+    code, text = run_cli(["replay", str(path)], capfd)
+    assert code == 1, text
+    assert text.strip() == (f"tegrasp: error: run log '{path}' {words}give a log written by "
+                            "`tegrasp hardware --log FILE` or lcm-logger"), text
+
+
+@pytest.mark.parametrize("cut", [2, 3, 10, -5])
+def test_a_real_log_cut_short_keeps_the_truncated_wording(cut, tmp_path, capfd):
+    path = tmp_path / "run.lcmlog"
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(START_US, RUN_INFO_CHANNEL, _run_info().encode())
+    log.close()
+    data = path.read_bytes()
+    path.write_bytes(data[:cut])  # inside the sync word, the header, or the message
+    code, text = run_cli(["replay", str(path)], capfd)
+    assert code == 1 and "holds no LCM message (truncated: " in text, text
+    assert "not an LCM log" not in text, text

@@ -53,7 +53,6 @@ ACCEPTED_UDPM = "which LCM's udpm:// does not take (it takes ttl, recv_buf_size)
     ("udpm://239.255.76.99:7699?ttl=0&ttl=1", ["gives the option ttl twice"]),
     ("udpm://239.255.76.99:7699?ttl=300", ["has ttl=300; a multicast TTL lies in [0, 255]"]),
     ("udpm://10.0.0.1:7699", ["has the address '10.0.0.1', which is not a multicast IPv4"]),
-    ("udpm://239.255.76.99:7699/", ["has the port '7699/', which is not a number from 1"]),
     ("udpm://239.255.76.99:0", ["has the port '0'"]),
     ("tcpq://127.0.0.1:7700?ttl=0", ["has the option 'ttl', which LCM's tcpq:// does not take "
                                      "(it takes none)"]),
@@ -77,6 +76,60 @@ def test_an_lcm_url_option_or_address_lcm_would_not_take_is_refused_naming_it(
     named = f"--lcm-url {url!r}" if option == "--lcm-url" else "field 'arm.lcm_url'"
     assert_one_line_error(code, text, "tegrasp: error:", named, *words)
     assert "lcm_udpm.c" not in text, text
+
+
+# Rule: an LCM URL whose text does not parse (no PROVIDER://, a udpm:// port or ttl that is
+# no number, an address that is no IPv4 address) is named by what does not parse, in the
+# same words wherever it is given; as --lcm-url it is a command line that does not parse
+# (exit 2, pointing to --help), as a config file's arm.lcm_url a file's field (exit 1). A URL
+# that parses and names a provider no bus is (nope://) stays refused as bad input (exit 1).
+FORM = "give udpm://GROUP:PORT, e.g. udpm://239.255.76.67:7667?ttl=0"
+
+
+@pytest.mark.parametrize("url, words", [
+    ("udpm://239.255.76.99:7699/", f"port '7699/' is not a number; {FORM}"),
+    ("udpm://239.255.76.99:y", f"port 'y' is not a number; {FORM}"),
+    ("udpm://239.255.76.99:7699?ttl=abc", f"ttl 'abc' is not a number; {FORM}"),
+    ("udpm://bus:7699", f"address 'bus' is not an IPv4 address; {FORM}"),
+    ("garbage", "it names no provider (PROVIDER://ADDRESS); give e.g. "
+                "udpm://239.255.76.67:7667?ttl=0"),
+])
+@pytest.mark.parametrize("option", ["--lcm-url", "arm.lcm_url"])
+def test_an_lcm_url_that_does_not_parse_is_a_usage_error_as_an_option(
+        tmp_path, monkeypatch, capfd, url, words, option):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    if option == "--lcm-url":
+        code, text = run_cli(["emulate", "jaco", "--lcm-url", url], capfd)
+        assert code == 2, text
+        assert_one_line_error(code, text, f"tegrasp emulate: error: argument --lcm-url: "
+                              f"{url!r}: {words} (see tegrasp emulate --help)")
+    else:
+        code, text = run_cli(["hardware", "--config", "hw.yaml", "--config-set",
+                              f"arm.lcm_url={url}"], capfd)
+        assert code == 1, text
+        assert_one_line_error(code, text, "field 'arm.lcm_url' does not parse as an LCM URL: "
+                              f"{words}, got {url!r}")
+
+
+def test_an_lcm_url_of_a_provider_no_bus_is_stays_bad_input(capfd):
+    code, text = run_cli(["emulate", "jaco", "--lcm-url", "nope://"], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "tegrasp: error: --lcm-url 'nope://' is not a bus other "
+                          "processes share: nope:// is not one; accepted: udpm:// or tcpq://")
+    assert "--help" not in text, text
+
+
+def test_an_lcm_default_url_variable_that_does_not_parse_is_named_not_the_option(tmp_path):
+    run = subprocess.run([sys.executable, "-m", "tegrasp_drake", "emulate", "jaco"],
+                         cwd=tmp_path, capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "LCM_DEFAULT_URL": "udpm://239.255.76.99:y"})
+    assert run.returncode == 1, run.stderr
+    assert_one_line_error(run.returncode, run.stderr, "tegrasp: error: the environment "
+                          "variable LCM_DEFAULT_URL (the default of --lcm-url) "
+                          f"'udpm://239.255.76.99:y' does not parse as an LCM URL: port 'y' "
+                          f"is not a number; {FORM}")
 
 
 def test_an_lcm_url_lcm_takes_is_accepted():

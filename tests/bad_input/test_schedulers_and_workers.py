@@ -172,6 +172,50 @@ def test_an_inproc_scheduler_address_is_refused_by_its_form(tmp_path, capfd):
     assert code == 1 and "--scheduler 'inproc://x' is not a scheduler address" in text, text
 
 
+# Rule: a --scheduler address that does not parse as tcp://HOST:PORT (no PROTOCOL://, no
+# host, no port, a port that is no number, an unclosed '[') is a command line that does not
+# parse: exit 2, pointing to --help, in its own words, never urllib's ("Port could not be
+# cast to integer value"); one that parses and names what no scheduler is reached at (another
+# protocol, port 0, a port past 65535, a path) stays bad input, exit 1.
+FORM = "give tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786"
+
+
+@pytest.mark.parametrize("command", ["sweep", "transfer", "sensitivity"])
+@pytest.mark.parametrize("address, words", [
+    ("tcp://x:y", f"port 'y' is not a number; {FORM}"),
+    ("tcp://x:-1", f"port '-1' is not a number; {FORM}"),
+    ("tcp://[::1]:8786x", f"port '8786x' is not a number; {FORM}"),
+    ("tcp://x", f"it has no port; {FORM}"),
+    ("tcp://:8786", f"it has no HOST; {FORM}"),
+    ("tcp://[::1", f"its HOST has a '[' without its ']'; {FORM}"),
+    ("localhost:8786", f"it has no PROTOCOL:// (a Dask scheduler's address is a URL); {FORM}"),
+])
+def test_a_scheduler_address_that_does_not_parse_is_a_usage_error(command, address, words,
+                                                                  tmp_path, capfd):
+    code, text = run_cli([command, "--scheduler", address, "--out", str(tmp_path / "o")],
+                         capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, f"tegrasp {command}: error: argument --scheduler: "
+                          f"{address!r}: {words} (see tegrasp {command} --help)")
+    assert "could not be cast" not in text and "Invalid IPv6" not in text, text
+    assert not (tmp_path / "o").exists()
+
+
+@pytest.mark.parametrize("address, words", [
+    ("tcp://x:99999", "names port 99999, past the last TCP port (65535)"),
+    ("tcp://x:0", "names port 0, which no scheduler listens on"),
+    ("http://x:y", "is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL tcp)"),
+    ("tcp://x:1/p", "has a path beside PROTOCOL://HOST:PORT"),
+])
+def test_a_scheduler_address_that_parses_and_is_refused_stays_bad_input(address, words,
+                                                                        tmp_path, capfd):
+    code, text = run_cli(["sweep", "--scheduler", address, "--out", str(tmp_path / "o"),
+                          *FAKE_TRIALS], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, f"tegrasp sweep: error: --scheduler {address!r} {words}")
+    assert "Port out of range" not in text and "--help" not in text, text
+
+
 def _scheduler_process(log_path):
     """`dask scheduler` on a free port, and its address (from its log)."""
     with open(log_path, "w") as log:  # the scheduler holds its own copy of the file
