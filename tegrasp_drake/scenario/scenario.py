@@ -121,10 +121,19 @@ declare_ranges(MultibodyPlantConfig, {
     "stiction_tolerance": Range(0.0, 0.01, low_open=True, unit="m/s",
                                 why="Drake's regularized friction needs a positive slip speed; "
                                     "above 1 cm/s a held object slides visibly"),
-    "contact_model": Choice(("point", "hydroelastic", "hydroelastic_with_fallback"),
-                            "Drake's contact models"),
-    "discrete_contact_approximation": Choice(("tamsi", "sap", "similar", "lagged"),
-                                             "Drake's discrete contact approximations"),
+    # Of Drake's three contact models, the one this station simulates: the taxels integrate
+    # the pads' hydroelastic pressure field (tactile_pads.py), which point contact never makes
+    # (a trial ran to "no Reach-Load event" with every taxel at 0 N), and strict hydroelastic
+    # stops at t = 0 on the links and shapes that have no hydroelastic representation.
+    "contact_model": Choice(("hydroelastic_with_fallback",),
+                            "the taxels read the pads' hydroelastic pressure field, which "
+                            "'point' never makes; strict 'hydroelastic' stops at the shapes "
+                            "with no hydroelastic representation"),
+    # Of Drake's four, the SAP family: the 2F-85's closed five-bar is a ball constraint and
+    # its drive a coupler, which Drake's TAMSI solver does not support (it stops at build).
+    "discrete_contact_approximation": Choice(("sap", "similar", "lagged"),
+                                             "the SAP solver's: the 2F-85 linkage's ball "
+                                             "constraints are not supported by 'tamsi'"),
     "sap_near_rigid_threshold": Range(0.0, 10.0, why="Drake's SAP near-rigid regime, "
                                       "non-negative, typically in [0, 1]"),
     "contact_surface_representation": Choice(("triangle", "polygon"),

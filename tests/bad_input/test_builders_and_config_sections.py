@@ -21,6 +21,15 @@ DRAKE_SECTION_PROBES = [  # (--set assignment, words the one error line holds)
      "field 'plant_config.contact_surface_representation' must be one of 'triangle'"),
     ("plant_config.discrete_contact_approximation=exact",
      "field 'plant_config.discrete_contact_approximation' must be one of"),
+    # Drake's names this station cannot run: refused at load, not a trial that reads no
+    # taxel (point contact makes no pressure field) or stops in Drake (strict hydroelastic,
+    # TAMSI, which has no ball constraint for the 2F-85's five-bar)
+    ("plant_config.contact_model=point", "must be one of 'hydroelastic_with_fallback' (the "
+                                         "taxels read the pads' hydroelastic pressure field"),
+    ("plant_config.contact_model=hydroelastic",
+     "must be one of 'hydroelastic_with_fallback'"),
+    ("plant_config.discrete_contact_approximation=tamsi",
+     "must be one of 'sap', 'similar', 'lagged' (the SAP solver's"),
     ("plant_config.penetration_allowance=-1.0",
      "field 'plant_config.penetration_allowance' must lie in (0, "),
     ("plant_config.stiction_tolerance=0.0", "field 'plant_config.stiction_tolerance' must lie in"),
