@@ -64,7 +64,7 @@ def main(argv=None) -> int:
                         default=["box", "thick_cylinder", "thin_cylinder"])
     parser.add_number("--seed", type=integer_option, default=600, allowed=SEED_RANGE)
     parser.add_workers()
-    parser.add_argument("--set", dest="overrides", action="append", default=[],
+    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a scenario field of every trial")
     parser.add_argument("--json", type=pathlib.Path, default=None)

@@ -55,7 +55,8 @@ def register(subparsers) -> None:
     parser.add_argument("--config", metavar="FILE",
                         help="hardware config YAML (HardwareStationConfig fields); default: "
                         "the scenario's `station: !HardwareStationConfig {...}`")
-    parser.add_argument("--config-set", dest="config_overrides", action="append", default=[],
+    parser.add_argument("--config-set", dest="config_overrides", action="append_settings",
+                        default=[],
                         type=config_set_option, metavar="KEY=VALUE", help="override a hardware config field, e.g. "
                         "--config-set tactile.port=/dev/ttyACM1")
     add_scenario_arguments(parser)

@@ -59,7 +59,7 @@ def register(subparsers) -> None:
                         help="record the object of this scenario file instead (your own object)")
     parser.add_argument("--scenario-name", default=None,
                         help="which scenario of --scenario (its object is recorded)")
-    parser.add_argument("--set", dest="overrides", action="append", default=[],
+    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a field of the scenario of each object recorded "
                         "(repeatable)")

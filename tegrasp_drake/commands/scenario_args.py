@@ -16,7 +16,7 @@ def add_scenario_arguments(parser) -> None:
                         help="YAML file of named scenarios (default: the built-in file)")
     parser.add_argument("--scenario-name", default=DEFAULT_SCENARIO,
                         help="which scenario of the file (default: %(default)s)")
-    parser.add_argument("--set", dest="overrides", action="append", default=[],
+    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a scenario field, e.g. --set object.name=thin_cylinder")
     parser.add_argument("--allow-long", action="store_true",

@@ -118,7 +118,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--logs", metavar="DIR", default=None,
                         help="also save each trial's log (trial.npz format) in DIR, for "
                         "re-scoring offline (analysis/detection_quality.py)")
-    parser.add_argument("--set", dest="overrides", action="append", default=[],
+    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a field of every trial's scenario, after the spec's "
                         "scenario_overrides, e.g. --set "

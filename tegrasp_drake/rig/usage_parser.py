@@ -26,11 +26,15 @@ class UsageParser(argparse.ArgumentParser):
     def __init__(self, *args, **keywords):
         super().__init__(*args, **keywords)
         self._negative_number_matcher = VALUE_LIKE_A_NUMBER
+        self.register("action", None, _StoreOnce)
+        self.register("action", "store", _StoreOnce)
+        self.register("action", "append_settings", _AppendSettings)
 
     def parse_known_args(self, args=None, namespace=None):
         """argparse's parse_known_args, a text value of this parser's arguments that holds
         a control character refused (text_argument_problem); a subcommand's parser checks
         its own arguments."""
+        self._given_options = {}  # _StoreOnce's record of this parse's options
         parsed, extras = super().parse_known_args(args, namespace)
         problem = text_argument_problem(self, parsed)
         if problem:
@@ -65,3 +69,33 @@ def text_argument_problem(parser: argparse.ArgumentParser, namespace) -> str | N
                         else action.metavar or action.dest)
                 return f"{name} {problem}, got {shorten(repr(text))}"
     return None
+
+
+class _StoreOnce(argparse._StoreAction):
+    """argparse's `store`, refusing an option given again with another value: of
+    `--out a --out b`, neither silently wins (a YAML file's repeated key is refused alike)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        seen = parser.__dict__.setdefault("_given_options", {})  # a plain parser's too
+        if self.dest in seen and seen[self.dest][1] != values:
+            from tegrasp_drake.rig.echo import shown
+            first, value = seen[self.dest]
+            parser.error(f"{first} given twice ({shown(value)}, then {shown(values)}); give "
+                         "it once")
+        seen[self.dest] = (option_string or self.metavar or self.dest, values)
+        super().__call__(parser, namespace, values, option_string)
+
+
+class _AppendSettings(argparse._AppendAction):
+    """argparse's `append` for KEY=VALUE settings (--set, --config-set), refusing one key
+    set twice to different values: neither silently wins."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        from tegrasp_drake.rig.echo import shown
+        from tegrasp_drake.rig.typed_yaml import assignment_key
+        key = assignment_key(values)
+        for earlier in getattr(namespace, self.dest, None) or ():
+            if assignment_key(earlier) == key and earlier != values:
+                parser.error(f"{option_string} sets {key} twice ({shown(earlier)}, then "
+                             f"{shown(values)}); set it once")
+        super().__call__(parser, namespace, values, option_string)

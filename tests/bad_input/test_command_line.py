@@ -165,6 +165,40 @@ def test_controller_and_another_set_controller_name_are_refused_naming_both(
     assert code == 1
 
 
+@pytest.mark.parametrize("argv, words", [
+    (["trial", "--out", "a", "--out", "b"], "--out given twice ('a', then 'b'); give it once"),
+    (["trial", "--scenario-name", "box", "--scenario-name", "thin_cylinder"],
+     "--scenario-name given twice ('box', then 'thin_cylinder'); give it once"),
+    (["trial", "--set", "object.mass=0.1", "--set", "object.mass=0.2"],
+     "--set sets object.mass twice ('object.mass=0.1', then 'object.mass=0.2'); set it once"),
+    (["sweep", "--set", "grasp.hold_s=2", "--set", "grasp.hold_s=3", "--dry-run"],
+     "--set sets grasp.hold_s twice"),
+    (["record-events", "--object", "box", "--set", "object.mass=0.1", "--set",
+      "object.mass=0.3"], "--set sets object.mass twice"),
+    (["hardware", "--config-set", "tactile.port=/a", "--config-set", "tactile.port=/b"],
+     "--config-set sets tactile.port twice ('tactile.port=/a', then 'tactile.port=/b')"),
+])
+def test_an_option_given_twice_with_two_values_is_refused(argv, words, tmp_path, monkeypatch,
+                                                          capfd):
+    """Neither value silently wins (as a YAML file's repeated key is refused): exit 2."""
+    monkeypatch.chdir(tmp_path)
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, words)
+    assert code == 2 and "--help" in text, text
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_an_option_repeated_with_the_same_value_and_different_keys_are_taken():
+    from tegrasp_drake.commands import trial
+    from tegrasp_drake.rig.usage_parser import UsageParser
+    parser = UsageParser(prog="tegrasp")
+    trial.register(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(["trial", "--out", "a", "--out", "a", "--set", "object.mass=0.1",
+                              "--set", "object.friction=0.4", "--set", "object.mass=0.1"])
+    assert args.out == "a"
+    assert args.overrides == ["object.mass=0.1", "object.friction=0.4", "object.mass=0.1"]
+
+
 def test_controller_and_the_same_set_controller_name_agree():
     scenario = T.LoadScenario(overrides=["controller.name=open_loop"], controller="open_loop")
     assert scenario.controller.name == "open_loop"
