@@ -318,6 +318,8 @@ def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: in
     problem = getattr(error, "problem", None) or str(error).splitlines()[0]
     where = f"{place}: " if place else ""
     context = getattr(error, "context", None)
+    if "character '\\t'" in problem:  # PyYAML's words for a tab where a token starts
+        return f"{where}a tab where YAML takes only spaces (it never indents with tabs); use spaces"
     return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 
 

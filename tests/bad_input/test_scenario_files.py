@@ -67,6 +67,20 @@ def test_a_yaml_syntax_error_in_a_scenario_file_is_named(tmp_path, capfd):
                           "expected ',' or '}'")
 
 
+@pytest.mark.parametrize("text, where", [("mine:\n\tobject: {name: box}\n", "line 2, column 1"),
+                                         ("mine:\n  object: {mass:\t0.1}\n", "line 2")])
+def test_a_tab_in_a_scenario_file_is_told_to_be_spaces(tmp_path, capfd, text, where):
+    """Not PyYAML's "found character '\\t' that cannot start any token"."""
+    scenario = tmp_path / "tabs.yaml"
+    scenario.write_text(text)
+    code, said = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine"],
+                         capfd)
+    assert_one_line_error(code, said, str(scenario), f"not valid YAML: {where}",
+                          "a tab where YAML takes only spaces (it never indents with tabs); "
+                          "use spaces")
+    assert "cannot start any token" not in said
+
+
 @pytest.mark.parametrize("command", [["record-events"], ["trial"]])
 def test_a_built_in_scenario_name_given_as_its_file_says_use_scenario_name(command, capfd):
     code, text = run_cli([*command, "--scenario", "memorizing_world"], capfd)
