@@ -160,7 +160,7 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
             if not _matches(item, hint):
                 where, expected, wrong = _mismatch(argument, item, hint)
                 raise TypeError(f"{name}: argument '{where}' must be "
-                                f"{_describe_hint(expected)}, got {type(wrong).__name__} "
+                                f"{_describe_hint(expected, wrong)}, got {type(wrong).__name__} "
                                 f"{shown(wrong)}")
     for argument, value in bound.arguments.items():  # a config's fields, changed since?
         if _mutable_dataclass(value):
@@ -325,12 +325,31 @@ def _matches(value, hint) -> bool:
     return all(_matches(item, arguments[0]) for item in value)
 
 
-def _describe_hint(hint) -> str:
+_UNKNOWN = object()  # _describe_hint's `given` when no value is at hand
+
+
+def _collection_qualifier(given, item_hint) -> str:
+    """What to say after "a sequence of X" (X: `item_hint`) to the value `given` in its
+    place: a string or a mapping is the usual slip (the list's one item; a dict of the
+    items, whose values are what to give when they are of X)."""
+    if given is _UNKNOWN or isinstance(given, _TEXT):
+        return " (not a single string)"
+    if isinstance(given, collections.abc.Mapping):
+        if given and item_hint is not None and all(_matches(v, item_hint)
+                                                   for v in given.values()):
+            return " (not a mapping: give its values, list(d.values()))"
+        return " (not a mapping)"
+    return ""
+
+
+def _describe_hint(hint, given=_UNKNOWN) -> str:
+    """What a value of type `hint` is, in words; `given`, the wrong value, picks the
+    qualifier a collection gets (_collection_qualifier)."""
     origin = typing.get_origin(hint)
     if origin is typing.Annotated:
-        return _describe_hint(hint.__origin__)
+        return _describe_hint(hint.__origin__, given)
     if origin in (typing.Union, types.UnionType):
-        return " or ".join(_describe_hint(member) for member in typing.get_args(hint))
+        return " or ".join(_describe_hint(member, given) for member in typing.get_args(hint))
     if hint is type(None) or hint is None:
         return "None"
     if origin is None:
@@ -340,7 +359,8 @@ def _describe_hint(hint) -> str:
     if name in ("Sequence", "Collection", "list", "Iterable", "Set", "set", "frozenset"):
         items = _describe_hint(arguments[0]) if arguments else "values"
         article = "an" if name[0] in "AEIOUaeiou" else "a"
-        return f"{article} {name.lower()} of {items} (not a single string)"
+        qualifier = _collection_qualifier(given, arguments[0] if arguments else None)
+        return f"{article} {name.lower()} of {items}{qualifier}"
     # Class names without their modules: Mapping[str, MemorizedEvent].
     return re.sub(r"\b(?:[a-z_]\w*\.)+([A-Za-z_]\w*)", r"\1", str(hint))
 

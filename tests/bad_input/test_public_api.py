@@ -16,6 +16,7 @@ import tegrasp_drake as T
 from tegrasp_drake.rig.api_boundary import Folder
 from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.sweep.spec import SweepSpec
 from tests.bad_input.probes import refusal
@@ -57,6 +58,14 @@ def test_every_public_function_checks_every_argument(name):
      "argument 'object_name' must be str, got int 5"),
     (lambda: tegrasp_drake.write_reports("out", "memorized/box/m00/a0"),
      "argument 'trial_ids' must be a sequence of str"),
+    # a mapping where its items belong: its values when they are the items, not "a string"
+    (lambda: tegrasp_drake.save_memorized_events("evs", tegrasp_drake.load_memorized_events(
+        package_events_dir(), "box")), "argument 'events' must be an iterable of "
+     "MemorizedEvent (not a mapping: give its values, list(d.values())), got dict"),
+    (lambda: tegrasp_drake.LoadScenario(overrides={"object.mass": 1}),
+     "argument 'overrides' must be a sequence of str (not a mapping), got dict"),
+    (lambda: tegrasp_drake.write_reports("out", 5),
+     "argument 'trial_ids' must be a sequence of str or None, got int 5"),
 ])
 def test_a_wrong_argument_is_named_at_the_call(call, words):
     with pytest.raises(TypeError) as error:
