@@ -20,7 +20,8 @@ from collections.abc import Callable
 
 import numpy as np
 
-from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary_sibling
+from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, file_problem, load_json,
+                                     one_line, temporary_sibling)
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
@@ -130,6 +131,9 @@ def load_trial_log(path: PathLike) -> TrialLog:
                                     max_text_chars=MAX_META_CHARS,
                                     known=("meta", *ARRAY_FIELDS), kind="a trial log")
         meta = load_json(str(arrays.pop("meta")))
+    except (DuplicateKeyError, JsonValueError) as e:  # JSON that parses, but is no metadata
+        raise TrialLogError(f"trial log '{path}': its metadata {e}; run the trial again to "
+                            "remake it") from None
     except NpzHeaderError as e:
         if "lacks the arrays" in str(e):
             raise TrialLogError(f"trial log '{path}' {e}; it is not a trial log (`tegrasp "

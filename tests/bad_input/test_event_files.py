@@ -245,6 +245,22 @@ def test_a_memorized_event_with_a_negative_ra_window_is_refused(tmp_path, capfd)
     assert_one_line_error(code, text, "load_lift.json", "'ra_left'")
 
 
+# Rule: a JSON text that escapes a lone surrogate ("\\ud800") is valid JSON syntax but no
+# Unicode text; every JSON file the package reads refuses it (rig/files.load_json), naming the
+# file and the field, here an event file's 'physical_event' for `tegrasp plot events`.
+def test_an_event_file_with_a_lone_surrogate_is_refused_naming_the_field(tmp_path, capfd):
+    events = _events_copy(tmp_path)
+    path = events / "box" / "reach_load.json"
+    path.write_text(path.read_text().replace(
+        '"physical_event": "first contact', '"physical_event": "first \\ud800 contact', 1))
+    code, text = run_cli(["plot", "events", "--events", str(events), "--out",
+                          str(tmp_path / "p.png")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, f"{path}: field 'physical_event' holds \\ud800",
+                          "lone UTF-16 surrogate", "tegrasp record-events --object box")
+    assert not (tmp_path / "p.png").exists()
+
+
 # Rule: an event file's numbers are in their ranges when read: the transition's time in its
 # trial is not before the trial started.
 def test_an_event_whose_transition_time_is_negative_is_refused(tmp_path):

@@ -188,6 +188,13 @@ def test_trial_log_meta_fields_have_ranges(tmp_path, meta, expected):
     assert expected in refused_log(tmp_path, meta)
 
 
+# Rule: the metadata is JSON read as every JSON file is (rig/files.load_json): a text holding a
+# lone surrogate escape ("\\ud800") is no text, refused naming the field.
+def test_trial_log_meta_text_with_a_lone_surrogate_is_refused_naming_the_field(tmp_path):
+    assert "its metadata field 'campaign_run' holds \\ud800" in refused_log(
+        tmp_path, {"campaign_run": "run \ud800"})
+
+
 def _npy(array) -> bytes:
     buffer = io.BytesIO()
     np.save(buffer, array)
