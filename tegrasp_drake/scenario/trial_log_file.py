@@ -400,11 +400,29 @@ def _result_problem(meta: dict, transitions: list, scenario) -> str | None:
         for k in range(max(len(timeline), len(result.transitions))):
             ours = timeline[k] if k < len(timeline) else None
             theirs = result.transitions[k] if k < len(result.transitions) else None
+            if ours != theirs and ours is not None and theirs is not None:
+                return (f"meta 'result' transitions[{k}] and the log's 'transitions[{k}]' "
+                        f"({_transition_text(ours)}) differ in "
+                        f"{_transition_differences(theirs, ours)} (a trial has one timeline)")
             if ours != theirs:
                 return (f"meta 'result' transitions[{k}] is {_transition_text(theirs)}, but "
                         f"the log's 'transitions[{k}]' is {_transition_text(ours)} (a trial "
                         "has one timeline)")
     return None
+
+
+def _transition_differences(result_entry, log_entry) -> str:
+    """The fields two Transitions' JSON forms differ in, each with both values in full
+    (repr: floats to their last digit, so no two sides print the same)."""
+    theirs, ours = result_entry.as_dict(), log_entry.as_dict()
+    fields = [key for key in (*ours, *(k for k in theirs if k not in ours))
+              if theirs.get(key) != ours.get(key)]
+    return "; ".join(f"'{key}': {_field_text(theirs, key)} in the result, "
+                     f"{_field_text(ours, key)} in the log" for key in fields)
+
+
+def _field_text(entry: dict, key: str) -> str:
+    return shorten(repr(entry[key]), 120) if key in entry else "absent"
 
 
 def _transition_text(entry) -> str:
