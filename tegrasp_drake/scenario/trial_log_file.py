@@ -303,6 +303,34 @@ def _timeline_problem(transitions: list, span: tuple[float, float]) -> str | Non
     return None
 
 
+def _sim_time_problem(meta: dict, arrays: dict) -> str | None:
+    """What is wrong if meta 'sim_time_s' (the simulated time the run ended at; its start is
+    0 s: simulator_config.start_time) disagrees with the log's samples or its stored result's
+    sim_time_s, or None. Each logger samples at its period from 0 s until the run ends
+    (trial_log_writer), so each time base's last sample lies at or before sim_time_s and
+    less than one of its periods before it (STEP_TOLERANCE of a period for float rounding)."""
+    sim_time = meta.get("sim_time_s")
+    if sim_time is None:
+        return None
+    result_time = (meta.get("result") or {}).get("sim_time_s")
+    if _is_time(result_time) and abs(result_time - sim_time) > _SAME_TIME_S:
+        return (f"meta 'sim_time_s' is {number_text(sim_time)} s, but its 'result' "
+                f"sim_time_s is {number_text(result_time)} s (one run's simulated time)")
+    for name in _TIME_BASES:
+        if name not in arrays:
+            continue
+        times = np.asarray(arrays[name], dtype=float)
+        last = len(times) - 1
+        period = float(times[-1] - times[-2])
+        slack = STEP_TOLERANCE * period
+        if times[-1] > sim_time + slack or sim_time - times[-1] > period + slack:
+            return (f"meta 'sim_time_s' is {number_text(sim_time)} s, but '{name}' ends at "
+                    f"sample {last}, {number_text(float(times[-1]))} s; a run's loggers sample "
+                    f"until it ends, so its last sample lies at or before sim_time_s and within "
+                    f"one period ({number_text(period)} s) of it")
+    return None
+
+
 def _times_problem(meta: dict, span: tuple[float, float]) -> str | None:
     """A phase start or event time outside the log's time span, or None."""
     start, end = span
@@ -477,8 +505,8 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
                                             meta.get("controller")))
     if problem:
         return problem if problem.startswith("meta") else f"meta {problem}"
-    problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
-               or _phase_starts_problem(meta))
+    problem = (_sim_time_problem(meta, arrays) or _timeline_problem(transitions, span)
+               or _times_problem(meta, span) or _phase_starts_problem(meta))
     if problem:
         return problem
     if "result" in meta and "phase_starts" not in meta:  # run_trial writes both
