@@ -312,10 +312,6 @@ def _sim_time_problem(meta: dict, arrays: dict) -> str | None:
     sim_time = meta.get("sim_time_s")
     if sim_time is None:
         return None
-    result_time = (meta.get("result") or {}).get("sim_time_s")
-    if _is_time(result_time) and abs(result_time - sim_time) > _SAME_TIME_S:
-        return (f"meta 'sim_time_s' is {number_text(sim_time)} s, but its 'result' "
-                f"sim_time_s is {number_text(result_time)} s (one run's simulated time)")
     for name in _TIME_BASES:
         if name not in arrays:
             continue
@@ -328,6 +324,10 @@ def _sim_time_problem(meta: dict, arrays: dict) -> str | None:
                     f"sample {last}, {number_text(float(times[-1]))} s; a run's loggers sample "
                     f"until it ends, so its last sample lies at or before sim_time_s and within "
                     f"one period ({number_text(period)} s) of it")
+    result_time = (meta.get("result") or {}).get("sim_time_s")
+    if _is_time(result_time) and abs(result_time - sim_time) > _SAME_TIME_S:
+        return (f"meta 'sim_time_s' is {number_text(sim_time)} s, but its 'result' "
+                f"sim_time_s is {number_text(result_time)} s (one run's simulated time)")
     return None
 
 

@@ -197,9 +197,11 @@ def test_trial_log_meta_fields_have_ranges(tmp_path, meta, expected):
     ({"sim_time_s": 0.05}, "meta 'sim_time_s' is 0.05 s, but 't_sa' ends at sample 10"),
     ({"sim_time_s": 0.0999}, "meta 'sim_time_s' is 0.0999 s, but 't_ra' ends at sample 100, "
                              "0.1 s"),
-    ({**META, "sim_time_s": 1e9},
-     "meta 'sim_time_s' is 1000000000 s, but its 'result' sim_time_s is 0.1 s"),
-], ids=["far-after", "before", "before-one-base", "result"])
+    ({**META, "sim_time_s": 1e9}, "meta 'sim_time_s' is 1000000000 s, but 't_sa' ends at "
+                                  "sample 10"),
+    ({**META, "sim_time_s": 0.1, "result": {**META["result"], "sim_time_s": 0.09}},
+     "meta 'sim_time_s' is 0.1 s, but its 'result' sim_time_s is 0.09 s"),
+], ids=["far-after", "before", "before-one-base", "with-result", "result"])
 def test_a_simulated_time_the_samples_disagree_with_is_refused(tmp_path, meta, expected):
     assert expected in refused_log(tmp_path, meta)
 
