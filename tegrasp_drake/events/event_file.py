@@ -16,6 +16,7 @@ import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.files import JsonFileError, error_line, one_line, read_json_file
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, object_name_problem
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
@@ -270,12 +271,23 @@ def read_memorized_event(path, *, object_name: str | None = None,
     if zero:
         raise MemorizedEventError(path, f"channels {zero} are zero throughout the window: "
                                   "Eq. 3 could never match them", owner)
+    turned = event.negative_peak()
+    if turned:
+        raise MemorizedEventError(path, negative_peak_problem(*turned), owner)
     for name, expected, found in (("object", object_name, event.object_name),
                                   ("transition", transition, event.transition)):
         if expected is not None and expected != found:
             raise MemorizedEventError(path, f"holds {name} '{found}', expected '{expected}'",
                                       owner)
     return event
+
+
+def negative_peak_problem(channel: str, index: int, value: float) -> str:
+    """The words for MemorizedEvent.negative_peak's (channel, index, value)."""
+    return (f"field 'samples.{channel}' sample {index} is {number_text(value)}, the window's "
+            "peak, but no sample is +1: max-normalising divides by the peak's magnitude, so "
+            "a recorded window's peak is the force or vibration the pad felt, +1, and a "
+            "negative peak is no window a recording gives (turned over or edited)")
 
 
 def has_index(events_dir) -> bool:

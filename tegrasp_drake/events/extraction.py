@@ -97,6 +97,10 @@ def extract_memorized_events(
         if zero:
             raise ValueError(f"{what}: channels {zero} are zero throughout the window; "
                              "Eq. 3 could never match them")
+        turned = event.negative_peak()
+        if turned:  # what the event files' reader refuses is never written
+            from tegrasp_drake.events.event_file import negative_peak_problem
+            raise ValueError(f"{what}: {negative_peak_problem(*turned)}")
         events[name] = event
     return events
 

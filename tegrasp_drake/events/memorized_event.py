@@ -105,6 +105,20 @@ class MemorizedEvent:
         """Names of the channels that are zero throughout the window."""
         return [name for name in CHANNEL_NAMES if not np.any(self.channel(name))]
 
+    def negative_peak(self) -> tuple[str, int, float] | None:
+        """(channel, sample index, value) of the first channel whose peak (largest |value|,
+        1 once normalised) is a negative sample, else None. Max-normalising divides by the
+        peak's magnitude, so a window's peak is +1 when it is the force (SA) or vibration (RA)
+        the pad felt at its transition, as in every recorded event (the committed events' 160
+        windows); -1 with no +1 is a window turned over (an edited file), which Eq. 3 would
+        score as the opposite of the touch it memorized."""
+        for name in CHANNEL_NAMES:
+            window = self.channel(name)
+            if np.any(window) and window.max() < 1.0 - _NORMALIZATION_TOLERANCE:
+                index = int(np.argmin(window))
+                return name, index, float(window[index])
+        return None
+
     def relative_path(self) -> str:
         """Path of the event's file inside the events folder."""
         return f"{self.object_name}/{self.transition}.json"
@@ -120,9 +134,10 @@ def _check_magnitudes(ra: np.ndarray) -> None:
     events' least SA sample, events/prismatic/ensemble/box/reach_load.json, is -0.67)."""
     for index, window in zip(RA_CHANNELS, ra):
         if np.any(window < 0.0):
-            raise ValueError(f"'{CHANNEL_NAMES[index]}' holds negative samples (least "
-                             f"{number_text(float(window.min()))}); an RA window is a "
-                             "vibration magnitude, 0 to 1 once normalised")
+            least = int(np.argmin(window))
+            raise ValueError(f"'{CHANNEL_NAMES[index]}' holds negative samples (the least, "
+                             f"sample {least}, is {number_text(float(window[least]))}); an RA "
+                             "window is a vibration magnitude, 0 to 1 once normalised")
 
 
 def current_package_versions() -> dict[str, str]:

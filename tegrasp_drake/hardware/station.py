@@ -289,7 +289,8 @@ class HardwareStation(Diagram):
                 f"{self._lcm.get_lcm_url()} within {timeout:g} s (is the Kinova driver, or "
                 "`tegrasp emulate jaco`, running on that URL?)")
         try:
-            self._gripper_client.wait_until_active(max(deadline - time.monotonic(), 0.0))
+            self._gripper_client.wait_until_active(max(deadline - time.monotonic(), 0.0),
+                                                   configured_s=timeout)
         except RobotiqActivationError as e:
             raise HardwareNotReadyError(f"gripper: {e}") from None
         while self._tactile_reader.counters().decoder.frames == 0:

@@ -749,13 +749,55 @@ BYTE_ORDER_MARK_PROBLEM = ("starts with a UTF-8 byte-order mark, which JSON does
 def load_json(text: str | bytes):
     """The data of a user's JSON text: json.loads, refusing a byte-order mark
     (ByteOrderMarkError; json alone refuses a str's as bad JSON and takes a bytes' silently), a
-    duplicate key (DuplicateKeyError) and NaN, Infinity or an integer no float holds
-    (JsonValueError), all ValueErrors."""
+    duplicate key (DuplicateKeyError) and NaN, Infinity, an integer no float holds or a text
+    or key with a lone surrogate, "\\ud800" (JsonValueError, naming the field), all
+    ValueErrors. Every JSON file the package reads comes through here."""
     if text[:1] == "\ufeff" or text[:3] == _UTF8_BOM:
         raise ByteOrderMarkError(BYTE_ORDER_MARK_PROBLEM)
-    return json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
+    data = json.loads(text, object_pairs_hook=_refuse_duplicate_keys,
                       parse_constant=_refuse_nonstandard_constant,
                       parse_int=_float_ranged_int)
+    # Only a \\u escape (or a str that holds one as it is) spells a surrogate: UTF-8 cannot.
+    if (b"\\u" in text if isinstance(text, bytes)
+            else "\\u" in text or not text.isascii()):
+        _refuse_lone_surrogates(data)
+    return data
+
+
+def _text_problem(text: str) -> str | None:
+    """Where `text` holds a lone UTF-16 surrogate (U+D800 to U+DFFF), which JSON's \\u escapes
+    can spell but no Unicode text holds, else None."""
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as error:
+        return (f"\\u{ord(text[error.start]):04x} at character {error.start}, a lone UTF-16 "
+                "surrogate, which is no Unicode character")
+    return None
+
+
+def _refuse_lone_surrogates(data) -> None:
+    """JsonValueError naming the first field (a path such as events[0].file) whose text or key
+    holds a lone surrogate: the escape is valid JSON syntax but no text (RFC 8259 8.2), and
+    would fail later when printed or written (UTF-8 cannot encode it)."""
+    pending = [("", data)]
+    while pending:
+        path, value = pending.pop()
+        if isinstance(value, str):
+            problem = _text_problem(value)
+            if problem:
+                where = f"field '{path}'" if path else "its text"
+                raise JsonValueError(f"{where} holds {problem}; write the text without it")
+        elif isinstance(value, dict):
+            for key in value:
+                problem = _text_problem(key)
+                if problem:
+                    where = f"a key of field '{path}'" if path else "a key"
+                    raise JsonValueError(f"{where} holds {problem}; write the text without it")
+            pending.extend((f"{path}.{key}" if path else key, item)
+                           for key, item in reversed(value.items()))
+        elif isinstance(value, list):
+            pending.extend((f"{path}[{k}]", item) for k, item in reversed(list(enumerate(value)))
+                           if isinstance(item, (str, dict, list)))
 
 
 # The most a run's own state file in its --out (world.json, sensitivity's points.json, a

@@ -5,7 +5,6 @@ matcher on it."""
 
 import bisect
 import dataclasses
-import json
 import pathlib
 import struct
 
@@ -18,8 +17,8 @@ from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import field_range
 from tegrasp_drake.rig.echo import shorten
-from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, file_problem, one_line,
-                                     read_bounded)
+from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError, JsonValueError,
+                                     file_problem, load_json, one_line, read_bounded)
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
@@ -486,7 +485,9 @@ def _versions_problem(info: lcmt_tegrasp_run_info) -> str | None:
     if problem:
         return problem
     try:
-        versions = json.loads(info.versions_json)
+        versions = load_json(info.versions_json)  # the package's one JSON reading
+    except (DuplicateKeyError, JsonValueError) as error:  # JSON, but not text or one value
+        return f"is JSON, but {error}"
     except ValueError:
         versions = None
     if not (isinstance(versions, dict)

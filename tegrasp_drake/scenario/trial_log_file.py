@@ -20,7 +20,8 @@ from collections.abc import Callable
 
 import numpy as np
 
-from tegrasp_drake.rig.files import file_problem, load_json, one_line, temporary_sibling
+from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, file_problem, load_json,
+                                     one_line, temporary_sibling)
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
@@ -130,6 +131,9 @@ def load_trial_log(path: PathLike) -> TrialLog:
                                     max_text_chars=MAX_META_CHARS,
                                     known=("meta", *ARRAY_FIELDS), kind="a trial log")
         meta = load_json(str(arrays.pop("meta")))
+    except (DuplicateKeyError, JsonValueError) as e:  # JSON that parses, but is no metadata
+        raise TrialLogError(f"trial log '{path}': its metadata {e}; run the trial again to "
+                            "remake it") from None
     except NpzHeaderError as e:
         if "lacks the arrays" in str(e):
             raise TrialLogError(f"trial log '{path}' {e}; it is not a trial log (`tegrasp "
@@ -299,6 +303,34 @@ def _timeline_problem(transitions: list, span: tuple[float, float]) -> str | Non
     return None
 
 
+def _sim_time_problem(meta: dict, arrays: dict) -> str | None:
+    """What is wrong if meta 'sim_time_s' (the simulated time the run ended at; its start is
+    0 s: simulator_config.start_time) disagrees with the log's samples or its stored result's
+    sim_time_s, or None. Each logger samples at its period from 0 s until the run ends
+    (trial_log_writer), so each time base's last sample lies at or before sim_time_s and
+    less than one of its periods before it (STEP_TOLERANCE of a period for float rounding)."""
+    sim_time = meta.get("sim_time_s")
+    if sim_time is None:
+        return None
+    for name in _TIME_BASES:
+        if name not in arrays:
+            continue
+        times = np.asarray(arrays[name], dtype=float)
+        last = len(times) - 1
+        period = float(times[-1] - times[-2])
+        slack = STEP_TOLERANCE * period
+        if times[-1] > sim_time + slack or sim_time - times[-1] > period + slack:
+            return (f"meta 'sim_time_s' is {number_text(sim_time)} s, but '{name}' ends at "
+                    f"sample {last}, {number_text(float(times[-1]))} s; a run's loggers sample "
+                    f"until it ends, so its last sample lies at or before sim_time_s and within "
+                    f"one period ({number_text(period)} s) of it")
+    result_time = (meta.get("result") or {}).get("sim_time_s")
+    if _is_time(result_time) and abs(result_time - sim_time) > _SAME_TIME_S:
+        return (f"meta 'sim_time_s' is {number_text(sim_time)} s, but its 'result' "
+                f"sim_time_s is {number_text(result_time)} s (one run's simulated time)")
+    return None
+
+
 def _times_problem(meta: dict, span: tuple[float, float]) -> str | None:
     """A phase start or event time outside the log's time span, or None."""
     start, end = span
@@ -396,11 +428,29 @@ def _result_problem(meta: dict, transitions: list, scenario) -> str | None:
         for k in range(max(len(timeline), len(result.transitions))):
             ours = timeline[k] if k < len(timeline) else None
             theirs = result.transitions[k] if k < len(result.transitions) else None
+            if ours != theirs and ours is not None and theirs is not None:
+                return (f"meta 'result' transitions[{k}] and the log's 'transitions[{k}]' "
+                        f"({_transition_text(ours)}) differ in "
+                        f"{_transition_differences(theirs, ours)} (a trial has one timeline)")
             if ours != theirs:
                 return (f"meta 'result' transitions[{k}] is {_transition_text(theirs)}, but "
                         f"the log's 'transitions[{k}]' is {_transition_text(ours)} (a trial "
                         "has one timeline)")
     return None
+
+
+def _transition_differences(result_entry, log_entry) -> str:
+    """The fields two Transitions' JSON forms differ in, each with both values in full
+    (repr: floats to their last digit, so no two sides print the same)."""
+    theirs, ours = result_entry.as_dict(), log_entry.as_dict()
+    fields = [key for key in (*ours, *(k for k in theirs if k not in ours))
+              if theirs.get(key) != ours.get(key)]
+    return "; ".join(f"'{key}': {_field_text(theirs, key)} in the result, "
+                     f"{_field_text(ours, key)} in the log" for key in fields)
+
+
+def _field_text(entry: dict, key: str) -> str:
+    return shorten(repr(entry[key]), 120) if key in entry else "absent"
 
 
 def _transition_text(entry) -> str:
@@ -455,8 +505,8 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
                                             meta.get("controller")))
     if problem:
         return problem if problem.startswith("meta") else f"meta {problem}"
-    problem = (_timeline_problem(transitions, span) or _times_problem(meta, span)
-               or _phase_starts_problem(meta))
+    problem = (_sim_time_problem(meta, arrays) or _timeline_problem(transitions, span)
+               or _times_problem(meta, span) or _phase_starts_problem(meta))
     if problem:
         return problem
     if "result" in meta and "phase_starts" not in meta:  # run_trial writes both

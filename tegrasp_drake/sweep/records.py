@@ -54,9 +54,12 @@ class RecordError(ValueError):
 
 @dataclass(frozen=True)
 class LoadedRecords:
-    """The records of a results folder: valid ones by trial id, corrupt ones by path."""
+    """The records of a results folder: valid ones by trial id, corrupt ones by path (files
+    named as a trial's record, record_name_trial_id), and `others`, the .json files under
+    trials/ whose names are no trial's record (a user's file): not the sweep's, left alone."""
     records: dict[str, dict]
     corrupt: dict[Path, str]
+    others: tuple[Path, ...] = ()
 
     def corrupt_problem(self, out_dir) -> str | None:
         """Why a table or figure may not be made from this folder's records, or None: a
@@ -72,6 +75,19 @@ class LoadedRecords:
 
 def record_file_name(trial_id: str) -> str:
     return trial_id.replace("/", ".") + ".json"
+
+
+# A record's file name: its trial id CONTROLLER/OBJECT/MARKER/aK with '/' as '.' (none of
+# the four parts holds a '.': controller and object names are letters, digits, '_' and '-').
+_RECORD_NAME = re.compile(r"([A-Za-z0-9_-]+)\.([A-Za-z0-9_-]+)\.(m[0-9]+)\.(a[0-9]+)\.json",
+                          re.ASCII)
+
+
+def record_name_trial_id(name: str) -> str | None:
+    """The trial id a record of this file name would hold, or None: a name of no trial's
+    record, which no sweep writes (a user's file in trials/)."""
+    match = _RECORD_NAME.fullmatch(name)
+    return "/".join(match.groups()) if match else None
 
 
 def record_path(out_dir, trial_id: str) -> Path:
@@ -325,15 +341,18 @@ def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
     """Reads every record under `<out_dir>/trials` (temporary files ignored; no trials folder:
     no records); UserPathError for a path that is not a folder."""
     folder = Path(out_dir) / TRIALS_FOLDER
-    records, corrupt = {}, {}
+    records, corrupt, others = {}, {}, []
     if folder.is_dir():
         for path in sorted(folder.glob("*.json")):
+            if record_name_trial_id(path.name) is None:
+                others.append(path)  # no sweep writes this name: not a record, not read
+                continue
             record, reason = read_record(path)
             if record is None:
                 corrupt[path] = reason
             else:
                 records[record["trial_id"]] = record
-    return LoadedRecords(records=records, corrupt=corrupt)
+    return LoadedRecords(records=records, corrupt=corrupt, others=tuple(others))
 
 
 def remove_stale_staging_files(out_dir, trial_ids) -> list[Path]:

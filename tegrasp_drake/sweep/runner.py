@@ -35,6 +35,7 @@ from tegrasp_drake.sweep.records import (
     earlier_temporary_files,
     load_records,
     make_record,
+    record_name_trial_id,
     remove_stale_staging_files,
     result_problem,
     result_trial_problem,
@@ -243,7 +244,8 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         remove_stale_staging_files(out_dir, [trial["trial_id"] for trial in trials])
         _tell_earlier_temporary_files(out_dir)
         loaded = load_records(out_dir)
-        _keep_corrupt_records_aside(loaded.corrupt)
+        _tell_files_not_the_sweeps(loaded.others)
+        _keep_corrupt_records_aside(loaded.corrupt, {trial["trial_id"] for trial in trials})
         events = _check_records_fit(trials, trial_function, loaded.records, out_dir)
         pending = [trial for trial in trials
                    if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
@@ -718,18 +720,37 @@ def _worker_count(client) -> int | None:
         return None
 
 
-def _keep_corrupt_records_aside(corrupt: dict) -> None:
-    """Renames each corrupt record to NAME.corrupt-<pid> beside it (its trial then runs again
-    into NAME), saying so in one line each before anything runs: nothing silent, nothing lost.
-    A FIFO or a link (to a device) in a record's place is renamed as a file is (the entry, not
-    what it points to); a folder there is left for the write check, which refuses the sweep
-    before it runs anything."""
+def _tell_files_not_the_sweeps(others) -> None:
+    """Warns, one line each, of the files under trials/ whose names are no trial's record
+    (records.record_name_trial_id): a user's files, which the sweep neither reads, renames
+    nor counts."""
+    for path in others:
+        logger.warning(f"sweep: {path}: its name is no trial's record (records are named "
+                       "CONTROLLER.OBJECT.MARKER.aK.json), so it is not the sweep's; left "
+                       "alone as it is")
+
+
+def _keep_corrupt_records_aside(corrupt: dict, trial_ids=None) -> None:
+    """Renames each corrupt record (a file named as a trial's record) to NAME.corrupt-<pid>
+    beside it (its trial then runs again into NAME), saying so in one line each before
+    anything runs: nothing silent, nothing lost. One of a trial not in `trial_ids` (this
+    sweep's; another spec's in a shared folder) is set aside too, said to be run again by a
+    sweep of its spec. A FIFO or a link (to a device) in a record's place is renamed as a file
+    is (the entry, not what it points to); a folder there is left for the write check, which
+    refuses the sweep before it runs anything."""
     for path, reason in corrupt.items():
         if path.is_dir() and not path.is_symlink():
             continue
         kept = path.with_name(f"{path.name}.corrupt-{os.getpid()}")
         os.replace(path, kept)
-        logger.warning(f"sweep: {path}: {reason}; kept as {kept.name}, its trial is re-run")
+        trial_id = record_name_trial_id(path.name)
+        if trial_ids is None or trial_id in trial_ids:
+            logger.warning(f"sweep: {path}: {reason}; kept as {kept.name}, its trial is "
+                           "re-run")
+        else:
+            logger.warning(f"sweep: {path}: {reason}; kept as {kept.name}; its trial, "
+                           f"{trial_id}, is not in this sweep: a sweep of the spec that has it "
+                           "runs it again")
 
 
 def summary_text(summary: SweepSummary) -> str:

@@ -216,7 +216,33 @@ def test_a_gripper_that_does_not_activate_says_so_with_a_rounded_time():
     client = RobotiqModbusClient(RobotiqModbusConfig(port="/dev/tegrasp-no-such-port"))
     with pytest.raises(RobotiqActivationError) as refused:
         client.wait_until_active(0.0123456789)  # never started: it waits out the timeout
-    assert "not active after 0.0123457 s" in str(refused.value), refused.value
+    assert "not active within 0.0123457 s" in str(refused.value), refused.value
+
+
+# Rule: a gripper whose port is silent is said to be not active within the timeout the user
+# configured (the station waits what is left of its ready_timeout after the arm's status,
+# 2.99971 s of 3 s, but says 3 s), with what it waited for, what came, and what to check.
+def test_a_silent_gripper_port_names_the_configured_timeout_and_what_to_check():
+    main, follower = os.openpty()  # a port nobody answers on
+    try:
+        port = os.ttyname(follower)
+        client = RobotiqModbusClient(RobotiqModbusConfig(port=port, device_id=9,
+                                                         request_timeout=0.01))
+        with client:
+            with pytest.raises(RobotiqActivationError) as refused:
+                client.wait_until_active(0.3, configured_s=3.0)
+    finally:
+        os.close(main)
+        os.close(follower)
+    message = str(refused.value)
+    assert message.startswith(f"Robotiq 2F-85 on {port} (slave 9) not active within 3 s: "
+                              "waited for its status to report activation complete (gSTA = 3, "
+                              "no fault); "), message
+    assert "2.9" not in message and "0.3" not in message, message
+    assert message.endswith(f"Check the gripper's power, its RS-485 adapter on {port}, the "
+                            "Modbus slave id (9) and the baud rate (115200); `tegrasp emulate "
+                            "all` runs the station without hardware"), message
+    assert "\n" not in message
 
 
 # Rule: a Robotiq status whose gFLT holds a major fault (2F-85 manual: the fingers stop

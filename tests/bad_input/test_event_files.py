@@ -42,8 +42,16 @@ def _copy_other_objects_events(folder):
         for e in data["events"] if e["object"] != "box"]))
 
 
+def _turned_over_sa_window(folder):
+    """The box's Reach-Load sa_left window negated (its peak -1, no sample +1): max-normalised
+    still, but no recording's window."""
+    edit_json(folder / "box" / "reach_load.json", lambda data: data["samples"].update(
+        sa_left=[-v for v in data["samples"]["sa_left"]]))
+
+
 @pytest.mark.parametrize("spoil, expected", [
     (_zero_channel, "channels ['ra_left'] are zero throughout the window"),
+    (_turned_over_sa_window, "field 'samples.sa_left' sample 44 is -1, the window's peak"),
     (_drop_index_entry, "lists no load_lift event of object 'box'"),
     (_copy_other_objects_events, "were recorded on another object: shape 'cylinder' "
                                  "(recorded) != 'box' (now)"),
@@ -243,6 +251,50 @@ def test_a_memorized_event_with_a_negative_ra_window_is_refused(tmp_path, capfd)
     code, text = run_cli(["plot", "events", "--events", str(events), "--out",
                           str(tmp_path / "p.png")], capfd)
     assert_one_line_error(code, text, "load_lift.json", "'ra_left'")
+
+
+# Rule: a max-normalised window's peak is the force or vibration the pad felt, +1; a window
+# whose peak is -1 (an SA window turned over: each sample in [-1, 1], its magnitude still 1)
+# is no recording's and is refused by the event files' one reader, naming the file, channel,
+# sample and value, with the command that records the events again.
+def test_an_event_window_whose_peak_is_negative_is_refused_naming_the_sample(tmp_path, capfd):
+    events = _events_copy(tmp_path)
+    _turned_over_sa_window(events)
+    code, text = run_cli(["plot", "events", "--events", str(events), "--out",
+                          str(tmp_path / "p.png")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, str(events / "box" / "reach_load.json"),
+                          "field 'samples.sa_left' sample 44 is -1",
+                          "tegrasp record-events --object box")
+    assert not (tmp_path / "p.png").exists()
+    with pytest.raises(MemorizedEventError, match="'samples.sa_left' sample 44 is -1"):
+        load_memorized_events(events, "box")
+
+
+def test_recording_never_writes_a_window_whose_peak_is_negative():
+    from tegrasp_drake.events.extraction import TactileTrial, extract_memorized_events
+    t = np.arange(0, 1.0, 0.001)
+    sa = np.column_stack([-0.02 - 0.01 * (t > 0.5), 0.02 + 5.0 * (t > 0.5)])  # left: no touch
+    ra = np.column_stack([0.1 + (t > 0.5), 0.1 + (t > 0.5)])
+    trial = TactileTrial(t_sa=t, sa=sa, t_ra=t, ra=ra, transition_times={"reach_load": 0.5})
+    with pytest.raises(ValueError, match="'samples.sa_left' sample 26 is -1, the window's peak"):
+        extract_memorized_events(trial, object_name="box", sa_rate_hz=100.0, ra_rate_hz=1000.0)
+
+
+# Rule: a JSON text that escapes a lone surrogate ("\\ud800") is valid JSON syntax but no
+# Unicode text; every JSON file the package reads refuses it (rig/files.load_json), naming the
+# file and the field, here an event file's 'physical_event' for `tegrasp plot events`.
+def test_an_event_file_with_a_lone_surrogate_is_refused_naming_the_field(tmp_path, capfd):
+    events = _events_copy(tmp_path)
+    path = events / "box" / "reach_load.json"
+    path.write_text(path.read_text().replace(
+        '"physical_event": "first contact', '"physical_event": "first \\ud800 contact', 1))
+    code, text = run_cli(["plot", "events", "--events", str(events), "--out",
+                          str(tmp_path / "p.png")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, f"{path}: field 'physical_event' holds \\ud800",
+                          "lone UTF-16 surrogate", "tegrasp record-events --object box")
+    assert not (tmp_path / "p.png").exists()
 
 
 # Rule: an event file's numbers are in their ranges when read: the transition's time in its

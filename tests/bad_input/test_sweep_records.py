@@ -81,6 +81,36 @@ def test_a_corrupt_sweep_record_is_said_and_kept_aside_before_its_trial_reruns(t
     assert kept.read_text() == '{"trunc'
 
 
+# Rule: a file under trials/ whose name is no trial's record (CONTROLLER.OBJECT.MARKER.aK.json)
+# is the user's, not the sweep's: a resumed sweep leaves it exactly where and as it is, says so
+# in one line (no trial is re-run for it), and the reports do not count it as a corrupt record;
+# the sweep's own corrupt record beside it is still set aside and its trial run again.
+def test_a_users_file_among_the_records_is_left_alone_and_said_not_the_sweeps(tmp_path,
+                                                                             caplog):
+    from tegrasp_drake.sweep.records import record_path
+    spec = SweepSpec(objects=("box",), controllers=("open_loop",), attempts=1,
+                     grid=((0.0, 0.0), (0.0, 0.005)))
+    run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    stray = tmp_path / "trials" / "zzz.json"
+    stray.write_text('{"my": "notes"}')
+    damaged = record_path(tmp_path, expand_trials(spec)[0].trial_id)
+    damaged.write_text('{"trunc')
+    with caplog.at_level("WARNING", logger="tegrasp_drake.sweep.runner"):
+        summary = run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    assert stray.read_text() == '{"my": "notes"}'  # not renamed, not changed
+    assert not list(stray.parent.glob("zzz.json.corrupt-*"))
+    said = [r.getMessage() for r in caplog.records if str(stray) in r.getMessage()]
+    assert said == [f"sweep: {stray}: its name is no trial's record (records are named "
+                    "CONTROLLER.OBJECT.MARKER.aK.json), so it is not the sweep's; left alone "
+                    "as it is"], said
+    assert (summary.ran, summary.corrupt) == (1, (str(damaged),))
+    (kept,) = damaged.parent.glob(f"{damaged.name}.corrupt-*")  # the sweep's own: set aside
+    assert kept.read_text() == '{"trunc'
+    loaded = load_records(tmp_path)
+    assert loaded.corrupt == {} and loaded.others == (stray,)
+    assert loaded.corrupt_problem(tmp_path) is None  # the reports are made
+
+
 # Rule: a record that names no format_version (absent or null) is said to be none a sweep
 # wrote, never "format_version None".
 @pytest.mark.parametrize("remove", [lambda data: data.pop("format_version"),

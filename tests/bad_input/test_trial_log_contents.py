@@ -341,16 +341,26 @@ def test_the_heuristic_detectors_ratios_are_read():
     assert result.transitions[0].scores[0] > 1.0
 
 
-# Rule: the stored result's transitions are the log's timeline, entry for entry.
+# Rule: the stored result's transitions are the log's timeline, entry for entry; two entries
+# that differ are named with the fields they differ in, both values in full (an entry's
+# summary, mode to mode at a rounded time, may print the same for both).
 @pytest.mark.parametrize("transitions, expected", [
     ([TIMELINE[0], {**TIMELINE[1], "to": "Hold"}],
-     "meta 'result' transitions[1] is Load -> Hold at 0.05 s (memorized_event), but the log's "
-     "'transitions[1]' is Load -> Lift at 0.05 s (memorized_event) (a trial has one timeline)"),
+     "meta 'result' transitions[1] and the log's 'transitions[1]' (Load -> Lift at 0.05 s "
+     "(memorized_event)) differ in 'to': 'Hold' in the result, 'Lift' in the log (a trial has "
+     "one timeline)"),
+    ([{**TIMELINE[0], "scores": [0.5, 0.5, 0.5, 0.5]}, TIMELINE[1]],
+     "meta 'result' transitions[0] and the log's 'transitions[0]' (Reach -> Load at 0.02 s "
+     "(memorized_event)) differ in 'scores': [0.5, 0.5, 0.5, 0.5] in the result, "
+     "[0.9, 0.8, 0.7, 0.95] in the log"),
+    ([{**TIMELINE[0], "t": 0.0200000001, "reason": "edited"}, TIMELINE[1]],
+     "differ in 't': 0.0200000001 in the result, 0.02 in the log; 'reason': 'edited' in the "
+     "result, 'event' in the log"),
     (TIMELINE + [logged_transition(0.08, "Lift", "Hold")],
      "meta 'result' transitions[2] is Lift -> Hold at 0.08 s (memorized_event), but the log's "
      "'transitions[2]' is absent"),
     (TIMELINE[:1], "meta 'result' transitions[1] is absent"),
-], ids=["to-hold", "one-more", "one-fewer"])
+], ids=["to-hold", "scores", "time-and-reason", "one-more", "one-fewer"])
 def test_a_stored_result_with_another_timeline_is_refused(tmp_path, transitions, expected):
     result = {**RESULT, "transitions": transitions, "final_mode": transitions[-1]["to"]}
     meta_refused(tmp_path, {**META, "result": result}, expected)

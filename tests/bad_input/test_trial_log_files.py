@@ -188,6 +188,45 @@ def test_trial_log_meta_fields_have_ranges(tmp_path, meta, expected):
     assert expected in refused_log(tmp_path, meta)
 
 
+# Rule: meta 'sim_time_s' is when the run ended; every logger samples until then, so each
+# time base's last sample lies at or before it and within one of its periods; the stored
+# result's sim_time_s is the same time. Another is refused naming the member and its sample.
+@pytest.mark.parametrize("meta, expected", [
+    ({"sim_time_s": 1e9}, "meta 'sim_time_s' is 1000000000 s, but 't_sa' ends at sample 10, "
+                          "0.0925926 s"),
+    ({"sim_time_s": 0.05}, "meta 'sim_time_s' is 0.05 s, but 't_sa' ends at sample 10"),
+    ({"sim_time_s": 0.0999}, "meta 'sim_time_s' is 0.0999 s, but 't_ra' ends at sample 100, "
+                             "0.1 s"),
+    ({**META, "sim_time_s": 1e9}, "meta 'sim_time_s' is 1000000000 s, but 't_sa' ends at "
+                                  "sample 10"),
+    ({**META, "sim_time_s": 0.1, "result": {**META["result"], "sim_time_s": 0.09}},
+     "meta 'sim_time_s' is 0.1 s, but its 'result' sim_time_s is 0.09 s"),
+], ids=["far-after", "before", "before-one-base", "with-result", "result"])
+def test_a_simulated_time_the_samples_disagree_with_is_refused(tmp_path, meta, expected):
+    assert expected in refused_log(tmp_path, meta)
+
+
+def test_plot_trial_refuses_a_simulated_time_past_the_log(tmp_path, capfd):
+    path = trial_log_with(tmp_path / "t.npz", {"sim_time_s": 1e9})
+    code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "x.png")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, f"trial log '{path}'", "meta 'sim_time_s' is 1000000000",
+                          "'t_sa' ends at sample 10")
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_a_simulated_time_within_a_period_after_the_last_samples_is_read(tmp_path):
+    path = trial_log_with(tmp_path / "t.npz", {"sim_time_s": 0.1005})  # half an RA period
+    assert load_trial_log(path).meta["sim_time_s"] > 0.1
+
+
+# Rule: the metadata is JSON read as every JSON file is (rig/files.load_json): a text holding a
+# lone surrogate escape ("\\ud800") is no text, refused naming the field.
+def test_trial_log_meta_text_with_a_lone_surrogate_is_refused_naming_the_field(tmp_path):
+    assert "its metadata field 'campaign_run' holds \\ud800" in refused_log(
+        tmp_path, {"campaign_run": "run \ud800"})
+
+
 def _npy(array) -> bytes:
     buffer = io.BytesIO()
     np.save(buffer, array)

@@ -160,6 +160,11 @@ JSON_DAMAGES = {  # name: (what is put at the path, the fact the error states)
     "truncated": (lambda path: path.write_text('{"a": [1,'), "is not valid JSON, perhaps trunc"),
     "duplicate key": (lambda path: path.write_text('{"a": 1, "a": 2}'), "appears twice"),
     "NaN": (lambda path: path.write_text('{"a": NaN}'), "holds NaN"),
+    # Valid JSON syntax, but no Unicode text: the field is named.
+    "lone surrogate": (lambda path: path.write_text('{"a": [{"b": "x\\ud800"}]}'),
+                       "field 'a[0].b' holds \\ud800 at character 1, a lone UTF-16 surrogate"),
+    "lone surrogate key": (lambda path: path.write_text('{"a": {"\\udc00": 1}}'),
+                           "a key of field 'a' holds \\udc00"),
     "wrong top-level type": (lambda path: path.write_text("[1]"), "is not a JSON object"),
     "deep nesting": (lambda path: path.write_text("[" * 100_000 + "]" * 100_000),
                      "nests too deeply to be a test file"),
@@ -183,6 +188,12 @@ def test_a_json_file_that_cannot_be_read_is_one_error_naming_it_and_the_remedy(t
     assert message.startswith(f"{path}: ") and message.endswith("; remake it"), message
     assert fact in refused.value.problem and "\n" not in message
     assert isinstance(refused.value, UserPathError)  # the commands say it in one line
+
+
+def test_json_text_with_a_surrogate_pair_is_the_character_it_spells():
+    from tegrasp_drake.rig.files import load_json
+    assert load_json('{"a": "\\ud83d\\ude00"}') == {"a": "\U0001f600"}
+    assert load_json(b'{"a": "\\u00e9"}') == {"a": "\u00e9"}
 
 
 def test_a_sound_json_file_is_read_and_checked(tmp_path):

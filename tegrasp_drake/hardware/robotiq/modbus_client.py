@@ -239,16 +239,38 @@ class RobotiqModbusClient:
         """True once activation completed (gSTA = 3)."""
         return self._active.is_set()
 
-    def wait_until_active(self, timeout: float) -> RobotiqStatusSample:
+    def wait_until_active(self, timeout: float, *,
+                          configured_s: float | None = None) -> RobotiqStatusSample:
         """Blocks (start-up code, never in a diagram) until activation is complete; raises
-        RobotiqActivationError with the thread's error, or on timeout."""
+        RobotiqActivationError with the thread's error, or on timeout. configured_s: the
+        timeout the user set, said in the error, when `timeout` is what is left of it (the
+        station's ready_timeout after the arm's wait)."""
         deadline = time.monotonic() + timeout
         while not self._active.wait(0.01):
             if self._finished.is_set() or time.monotonic() > deadline:
-                raise RobotiqActivationError(
-                    self.error or f"Robotiq 2F-85 on {self.port} (slave "
-                    f"{self._config.device_id}) not active after {number_text(timeout)} s")
+                raise RobotiqActivationError(self.error or self._not_active_words(
+                    timeout if configured_s is None else configured_s))
         return self.latest_status()
+
+    def _not_active_words(self, timeout: float) -> str:
+        """Why the gripper is not active after `timeout` [s]: what was awaited, what came,
+        and what to check."""
+        sample, counters = self.latest_status(), self.counters()
+        if sample is not None:
+            seen = (f"gSTA = {int(sample.status[units.STATUS_STA])} in its last status, "
+                    f"{device_fault_words(sample.status)}")
+        elif counters.writes or counters.errors:
+            seen = (f"no status read was accepted ({counters.writes} write(s) accepted, "
+                    f"{counters.errors} transaction(s) failed; {self._last_refusal()})")
+        else:
+            seen = "it has not answered a request yet"
+        return (f"Robotiq 2F-85 on {self.port} (slave {self._config.device_id}) not active "
+                f"within {number_text(timeout)} s: waited for its status to report activation "
+                f"complete (gSTA = {int(units.ActivationStatus.ACTIVE)}, no fault); {seen}. "
+                f"Check the gripper's power, its RS-485 adapter on {self.port}, the Modbus "
+                f"slave id ({self._config.device_id}) and the baud rate "
+                f"({self._config.baudrate}); `tegrasp emulate all` runs the station without "
+                "hardware")
 
     # --- the thread -------------------------------------------------------------------
 
