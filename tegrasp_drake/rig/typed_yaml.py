@@ -106,6 +106,14 @@ def read_yaml_file_cached(path: str | pathlib.Path, what: str):
     return copy.deepcopy(_PARSED_FILES[key])
 
 
+def top_level_tag(text: str) -> str | None:
+    """The YAML tag (`!SimulatedStationConfig`) of `text`'s top-level mapping, which parse_yaml
+    drops, or None; `text` is YAML parse_yaml has read."""
+    root = compose(text)
+    tag = getattr(root, "tag", "")
+    return tag if isinstance(root, yaml.MappingNode) and tag.startswith("!") else None
+
+
 def require_fields(data, path, what: str, advice: str) -> None:
     """ConfigError unless a configuration file's parsed YAML holds a field: an empty or
     comment-only file, `{}` or a lone tag (`!Scenario {}`) is a mistake, not a request for
