@@ -409,8 +409,8 @@ def _drake_fields(cls) -> tuple:
 
 def undeclared_name_lists(*roots) -> list[str]:
     """"Class.field" of every list-of-text field reachable from `roots` (dataclasses) not
-    declared with distinct_names (or settings()): each such list names things, and a repeated name is refused
-    only where it is declared."""
+    declared with distinct_names (or settings()): each such list names things, and a repeated
+    name is refused only where it is declared."""
     seen, missing, pending = set(), [], list(roots)
     while pending:
         cls = pending.pop()
