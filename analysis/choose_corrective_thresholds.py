@@ -84,13 +84,18 @@ def tally(outcomes, situations: int):
             f"{1000 * max(lat):.0f} ms" if lat else "-")
 
 
+def title(object_name: str) -> str:
+    """The report's first line, by which an earlier report at OUT is known."""
+    return f"# Memorized corrective triggers of `{object_name}`: thresholds and detection"
+
+
 def main(argv=None) -> int:
     parser = script_parser("choose_corrective_thresholds", __doc__)
     parser.add_input("corrective_logs", type=pathlib.Path, what="corrective logs folder",
                      advice=CORRECTIVE_LOGS_ADVICE)
     parser.add_input("ensemble_logs", type=pathlib.Path, what="ensemble logs folder",
                      advice=ENSEMBLE_LOGS_ADVICE)
-    parser.add_output("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path, title=lambda args: title(args.object))
     parser.add_argument("--object", default="box")
     parser.add_input("--events", type=pathlib.Path, default=package_events_dir(),
                      what="--events folder", advice=EVENTS_ADVICE)
@@ -101,7 +106,7 @@ def main(argv=None) -> int:
     scored = [(role, span, log, on_controller_ticks(
         event_span(tactile_trial_from_log(log), events, span), CONFIG.update_period_s))
               for role, span, log in rows]
-    lines = [f"# Memorized corrective triggers of `{args.object}`: thresholds and detection",
+    lines = [title(args.object),
              "", "Made by `python analysis/choose_corrective_thresholds.py` (its docstring: "
              "which runs choose, which only report). Detected: first firing from 10 ms "
              "before to 0.5 s after the physical event (a hit's start; the pads' first 1 mm "

@@ -59,11 +59,14 @@ def _fmt(value):
     return "–" if value is None else f"{1000 * value:.0f} ms"
 
 
+TITLE = "# Eq. 3 thresholds of the taxel_aware controller's ensemble events"  # OUT's first line
+
+
 def main(argv=None) -> int:
     parser = script_parser("choose_ensemble_thresholds", __doc__)
     parser.add_input("logs", type=pathlib.Path, what="logs folder",
                      advice=ENSEMBLE_LOGS_ADVICE)
-    parser.add_output("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path, title=TITLE)
     parser.add_number("--runs", type=integer_option, nargs="+", default=[5, 6, 7],
                       allowed=Range(low=0, why="the index of a run record_ensemble_events "
                                                "wrote"))
@@ -83,7 +86,7 @@ def main(argv=None) -> int:
             print(f"scored {path}", flush=True)
     chosen = {t: choose_thresholds([s for s in spans if s.transition == t], SA_GRID, RA_GRID)
               for t in TRANSITIONS}
-    lines = ["# Eq. 3 thresholds of the taxel_aware controller's ensemble events\n",
+    lines = [TITLE + "\n",
              f"Chosen per transition on the held-out ensemble runs (seeds 1000000 + "
              f"{args.runs} of each object: {len(spans) // 3} spans per transition; the "
              "templates came from the other runs) by `analysis/choose_ensemble_thresholds.py`"

@@ -25,7 +25,7 @@ sys.path.insert(0, str(pathlib.Path(__file__).parent))
 from compare_hands import failure_class, load_folders  # noqa: E402
 
 from tegrasp_drake.commands.script_output import (  # noqa: E402
-    SWEEP_RESULTS_ADVICE, refuse_unusable_output, run_script, script_parser, write_report)
+    SWEEP_RESULTS_ADVICE, run_script, script_parser, write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult  # noqa: E402
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value  # noqa: E402
 from tegrasp_drake.sweep.table import succeeded as _succeeded  # noqa: E402
@@ -73,9 +73,14 @@ def _largest_latency_change(reference, coarse) -> str:
     return _ms(max(differences, key=abs)) if differences else "–"
 
 
+def title(label: str) -> str:
+    """The report's first line, by which an earlier report at OUT is known."""
+    return f"# {label} against the reference, paired trial by trial"
+
+
 def report(reference: dict, coarse: dict, label: str = "coarse") -> str:
     common = sorted(set(reference) & set(coarse))
-    lines = [f"# {label} against the reference, paired trial by trial", "",
+    lines = [title(label), "",
              f"{len(common)} paired trials (reference {len(reference)}, {label} {len(coarse)} "
              "records).", ""]
     for controller in sorted({reference[t][0]["controller"] for t in common}):
@@ -109,7 +114,8 @@ def report(reference: dict, coarse: dict, label: str = "coarse") -> str:
 
 def main(argv=None) -> int:
     parser = script_parser("compare_geometry", __doc__)
-    parser.add_argument("out", type=pathlib.Path, help="the Markdown report to write")
+    parser.add_output("out", type=pathlib.Path, title=lambda args: title(args.label),
+                      help="the Markdown report to write")
     parser.add_input("reference", type=pathlib.Path, what="reference folder",
                      advice=SWEEP_RESULTS_ADVICE, help="records on the reference representation")
     parser.add_input("coarse", type=pathlib.Path, what="coarse folder",
@@ -118,7 +124,6 @@ def main(argv=None) -> int:
     parser.add_argument("--label", default="coarse",
                         help="the variant's name in the report (default: coarse)")
     args = parser.parse_args(argv)
-    refuse_unusable_output("compare_geometry", args.out)
     reference, coarse = load_folders([args.reference, args.coarse], "compare_geometry",
                                      ["reference folder", "coarse folder"])
     text = report(reference, coarse, args.label)

@@ -16,8 +16,7 @@ import pathlib
 import sys
 
 from tegrasp_drake.commands.script_output import (SWEEP_RESULTS_ADVICE, load_sweep_records,
-                                                  refuse_unusable_output, run_script,
-                                                  script_parser, write_report)
+                                                  run_script, script_parser, write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
@@ -104,22 +103,24 @@ def report(prismatic: dict, linkage: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+TITLE = "# Prismatic against linkage hand"  # the report's first line
+
+
 def main(argv=None) -> int:
     parser = script_parser("compare_hands", __doc__)
-    parser.add_argument("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path, title=TITLE)
     parser.add_input("linkage", type=pathlib.Path, what="linkage folder",
                      advice=SWEEP_RESULTS_ADVICE)
     parser.add_input("prismatic", type=pathlib.Path, nargs="+", what="prismatic folder",
                      advice=SWEEP_RESULTS_ADVICE)
     args = parser.parse_args(argv)
-    refuse_unusable_output("compare_hands", args.out)
     linkage, *prismatic_runs = load_folders(
         [args.linkage, *args.prismatic], names=["linkage folder"]
         + ["prismatic folder"] * len(args.prismatic))
     prismatic = {}
     for records in prismatic_runs:
         prismatic.update(records)
-    text = f"# Prismatic against linkage hand\n\n{report(prismatic, linkage)}"
+    text = f"{TITLE}\n\n{report(prismatic, linkage)}"
     write_report(args.out, text, script="compare_hands")
     print(f"wrote {args.out}")
     return 0

@@ -8,7 +8,6 @@ import sys
 
 from tegrasp_drake.rig.number_text import number_option
 from tegrasp_drake.commands.script_output import run_script, script_parser
-from tegrasp_drake.figures.figure_files import FigureFormatError, check_figure_path
 from tegrasp_drake.figures.ra_transients import plot_ra_transients
 from tegrasp_drake.rig.files import UserPathError
 from tegrasp_drake.rig.ranges import Range
@@ -19,14 +18,11 @@ TIME_STEPS = (1e-3, 5e-4, 2.5e-4)
 
 def main(argv=None) -> int:
     parser = script_parser("compare_ra_transients", __doc__)
-    parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
+    parser.add_output("out", figure=True, help="the figure to write (.png, .pdf or .svg); an "
+                      "existing figure only with --overwrite")
     parser.add_number("--speed", type=number_option, default=0.025, help="finger speed [m/s]",
                       allowed=Range(low=0.0, low_open=True, unit="m/s"))
     args = parser.parse_args(argv)
-    try:
-        check_figure_path(args.out)  # before the strikes, not after
-    except FigureFormatError as error:
-        raise SystemExit(f"compare_ra_transients: error: {error}") from None
     strikes = {dt: run_pad_strike(PadStrikeConfig(time_step_s=dt, finger_speed_mps=args.speed))
                for dt in TIME_STEPS}
     for dt, strike in strikes.items():

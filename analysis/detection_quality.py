@@ -19,7 +19,9 @@ from tegrasp_drake.sweep.spec import CONTROLLER_NAMES
 
 def main(argv=None) -> int:
     parser = script_parser("detection_quality", __doc__)
-    parser.add_output("out", type=pathlib.Path, help="the Markdown report to write")
+    parser.add_output("out", type=pathlib.Path, help="the Markdown report to write (an "
+                      "existing file only if it is one, of this --title)",
+                      title=lambda args: f"# {args.title}")
     parser.add_input("results", type=pathlib.Path, nargs="+", what="results folder",
                      advice=SWEEP_RESULTS_ADVICE,
                      help="`tegrasp sweep` results folders (their records, trials/*.json)")

@@ -31,19 +31,14 @@ def run_corner(job):
 
 
 def main(argv=None) -> int:
-    from tegrasp_drake.commands.script_output import refuse_unusable_output, script_parser
+    from tegrasp_drake.commands.script_output import script_parser
     parser = script_parser("explain_open_loop", __doc__)
-    parser.add_argument("out", help="the figure to write (.png, .pdf or .svg)")
+    parser.add_output("out", figure=True, help="the figure to write (.png, .pdf or .svg); an "
+                      "existing figure only with --overwrite")
     parser.add_workers()
     args = parser.parse_args(argv)
-    from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_path,
-                                                    save_figure)
+    from tegrasp_drake.figures.figure_files import save_figure
     from tegrasp_drake.rig.files import UserPathError
-    try:
-        check_figure_path(args.out)  # before the trials, not after
-    except FigureFormatError as error:
-        raise SystemExit(f"explain_open_loop: error: {error}") from None
-    refuse_unusable_output("explain_open_loop", args.out)
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt

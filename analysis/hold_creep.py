@@ -68,12 +68,15 @@ def trial_holds(record: dict, log) -> list[dict]:
     return holds
 
 
+TITLE = "# Hold -> Avoid: friction creep or something else"  # the report's first line
+
+
 def main(argv=None) -> int:
     parser = script_parser("hold_creep", __doc__)
     parser.add_input("results", type=pathlib.Path, what="results folder",
                      advice=SWEEP_RESULTS_ADVICE)
     parser.add_input("logs", type=pathlib.Path, what="logs folder", advice=SWEEP_LOGS_ADVICE)
-    parser.add_output("--out", type=pathlib.Path, default=None)
+    parser.add_output("--out", type=pathlib.Path, default=None, title=TITLE)
     args = parser.parse_args(argv)
     loaded = load_sweep_records("hold_creep", args.results)
     ran = [r for r in loaded.records.values() if r.get("result") is not None]
@@ -93,7 +96,7 @@ def main(argv=None) -> int:
         if trial_id not in missing:
             rows.extend((trial_id, hold) for hold in trial_holds(record, load_trial_log(path)))
     creep = sum(1 for _, h in rows if h["creep"])
-    lines = ["# Hold -> Avoid: friction creep or something else", "",
+    lines = [TITLE, "",
              f"{len(rows)} Avoids in {len({r for r, _ in rows})} of {len(ran)} trials: "
              f"{creep} with the "
              "creep signature (grip falling, the film at a steady level), "

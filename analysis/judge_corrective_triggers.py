@@ -31,17 +31,20 @@ def one(job):
     return label, time, trigger, result, avoid
 
 
+# The table's header row, its first line, by which an earlier table at OUT is known.
+HEADER = ("| situation | trigger | Avoid at (after the hit) | Avoid's trigger | direction | "
+          "Avoids | hold / unload | final mode, tilt, placement error | wall [s] |")
+
+
 def main(argv=None) -> int:
-    from tegrasp_drake.commands.script_output import refuse_unusable_output, script_parser
+    from tegrasp_drake.commands.script_output import script_parser
     parser = script_parser("judge_corrective_triggers", __doc__)
-    parser.add_argument("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path, title=HEADER)
     parser.add_workers()
     args = parser.parse_args(argv)
-    refuse_unusable_output("judge_corrective_triggers", args.out)
     jobs = [(label, force, time, trigger) for label, force, time in HITS
             for trigger in TRIGGERS]
-    lines = ["| situation | trigger | Avoid at (after the hit) | Avoid's trigger | direction | "
-             "Avoids | hold / unload | final mode, tilt, placement error | wall [s] |",
+    lines = [HEADER,
              "|---|---|---|---|---|---|---|---|---|"]
     with ProcessPoolExecutor(args.workers) as pool:
         for label, time, trigger, result, avoid in pool.map(one, jobs):

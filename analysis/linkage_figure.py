@@ -17,8 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from tegrasp_drake.commands.script_output import run_script, script_parser  # noqa: E402
-from tegrasp_drake.figures.figure_files import (FigureFormatError,  # noqa: E402
-                                                check_figure_path, save_figure)
+from tegrasp_drake.figures.figure_files import save_figure  # noqa: E402
 from tegrasp_drake.rig.files import UserPathError  # noqa: E402
 from tegrasp_drake.robotiq import linkage  # noqa: E402
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH  # noqa: E402
@@ -45,12 +44,9 @@ def draw(ax, theta: float, color: str, label: str) -> None:
 
 def main(argv=None) -> int:
     parser = script_parser("linkage_figure", __doc__)
-    parser.add_argument("out", type=pathlib.Path, help="the figure to write (.png, .pdf or .svg)")
+    parser.add_output("out", type=pathlib.Path, figure=True, help="the figure to write (.png, "
+                      ".pdf or .svg); an existing figure only with --overwrite")
     out = parser.parse_args(argv).out
-    try:
-        check_figure_path(out)
-    except FigureFormatError as error:
-        raise SystemExit(f"linkage_figure: error: {error}") from None
     fig, ax = plt.subplots(figsize=(6.4, 6.4))
     for theta, color, label in ((0.0, "tab:blue", "open"),
                                 (linkage.driver_angle(0.0225), "tab:orange", "mid"),

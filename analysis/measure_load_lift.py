@@ -20,13 +20,17 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from tegrasp_drake.commands.script_output import (EVENTS_ADVICE, refuse_unusable_folders,
-                                                  run_script, script_parser)
+                                                  refuse_unusable_output, run_script,
+                                                  script_parser)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.ranges import SEED_RANGE
 from tegrasp_drake.rig.files import JSON_ARRAY_START, write_atomically
 from tegrasp_drake.rig.typed_yaml import set_option
 
+# The keys of every row, by which an earlier --json file of this script is known.
+ROW_KEYS = ("object", "offset_mm", "seed", "reach_load", "load_lift", "place_unload",
+            "final_mode")
 MARKERS_M = ((0.0, 0.0), (0.01, 0.0), (0.0, 0.015), (-0.01, -0.015))
 
 
@@ -67,7 +71,8 @@ def main(argv=None) -> int:
     parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a scenario field of every trial")
-    parser.add_argument("--json", type=pathlib.Path, default=None)
+    parser.add_output("--json", type=pathlib.Path, default=None, rows=ROW_KEYS,
+                      help="write the rows here (an existing file only if it is such rows)")
     args = parser.parse_args(argv)
     from tegrasp_drake.scenario.scenario import LoadScenario
     from tegrasp_drake.scenario.scenario_events import load_controller_events
@@ -91,7 +96,8 @@ def main(argv=None) -> int:
                     else "-")
         print(f"| {r['object']} | {tuple(r['offset_mm'])} | {r['seed']} | {rl} | {ll} | "
               f"{fraction} | {pu} | {r['final_mode']} |")
-    if args.json:
+    if args.json:  # the check again, for a file put there during the trials
+        refuse_unusable_output("measure_load_lift", args.json, rows=ROW_KEYS)
         write_atomically(args.json, json.dumps(rows, indent=1), start=JSON_ARRAY_START)
     return 0
 

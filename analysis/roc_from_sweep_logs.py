@@ -49,11 +49,16 @@ def armed_from(transitions, transition):
     return entered
 
 
+def title(controller: str) -> str:
+    """The report's first line, by which an earlier report at OUT is known."""
+    return f"# ROC-style curves of the {controller} controller's event triggers"
+
+
 def main(argv=None) -> int:
     parser = script_parser("roc_from_sweep_logs", __doc__)
     parser.add_input("logs", type=pathlib.Path, what="logs folder",
                      advice="give the --logs folder of a `tegrasp sweep`")
-    parser.add_output("out", type=pathlib.Path)
+    parser.add_output("out", type=pathlib.Path, title=lambda args: title(args.controller))
     parser.add_argument("--controller", default="taxel_aware")
     parser.add_input("--events", default=str(package_events_dir()), what="--events folder",
                      advice=EVENTS_ADVICE)
@@ -89,7 +94,7 @@ def main(argv=None) -> int:
                 path.stem, trial, events_by_object[name], transition, armed_from_s=start,
                 physical_s=physical[transition]))
         print(f"scored {path.name}", flush=True)
-    lines = [f"# ROC-style curves of the {args.controller} controller's event triggers\n",
+    lines = [title(args.controller) + "\n",
              f"From {len(paths)} trial logs of `{args.logs.name}`, re-scored offline "
              "(`analysis/roc_from_sweep_logs.py`); the thresholds are scaled together from "
              "the controller's own (scale 1.00). Judged trials: no threshold is chosen "

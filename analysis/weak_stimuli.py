@@ -26,31 +26,28 @@ import sys
 
 from tegrasp_drake.sweep.missed_event_report import record_has_waits, report_markdown, sweep_misses
 from tegrasp_drake.commands.script_output import (SWEEP_LOGS_ADVICE, SWEEP_RESULTS_ADVICE,
-                                                  load_sweep_records, refuse_unusable_input,
-                                                  run_script,
+                                                  load_sweep_records, run_script,
                                                   script_parser, write_report)
-from tegrasp_drake.rig.files import folder_problem
+
+
+def title(results: pathlib.Path) -> str:
+    """The report's heading: its first line is `# ` and it."""
+    return f"Missed memorized events of `{results.name}`"
 
 
 def main(argv=None) -> int:
     parser = script_parser("weak_stimuli", __doc__)
-    parser.add_argument("results", type=pathlib.Path, help="a sweep's results folder")
-    parser.add_argument("logs", type=pathlib.Path, help="the sweep's --logs folder")
+    parser.add_input("results", type=pathlib.Path, what="results folder",
+                     advice=SWEEP_RESULTS_ADVICE, help="a sweep's results folder")
+    parser.add_input("logs", type=pathlib.Path, what="logs folder", advice=SWEEP_LOGS_ADVICE,
+                     help="the sweep's --logs folder")
     parser.add_argument("--events", type=pathlib.Path, default=None,
                         help="the memorized events folder the sweep ran with")
-    parser.add_argument("--out", type=pathlib.Path, default=None, help="write the report here")
+    parser.add_output("--out", type=pathlib.Path, default=None, help="write the report here",
+                      title=lambda args: f"# {title(args.results)}")
     parser.add_argument("--controller", default="memorized",
                         help="the event-triggered controller whose trials to look at")
     args = parser.parse_args(argv)
-    refuse_unusable_input("weak_stimuli", args.results, "results folder", SWEEP_RESULTS_ADVICE)
-    refuse_unusable_input("weak_stimuli", args.logs, "logs folder", SWEEP_LOGS_ADVICE)
-    out_problem = None if args.out is None else (
-        "is a folder" if args.out.is_dir() else
-        None if args.out.parent.is_dir() and folder_problem(args.out.parent) is None
-        else f"its folder {args.out.parent} is not one you can write in")
-    if out_problem:  # before the replays, which take minutes
-        raise SystemExit(f"weak_stimuli: --out {args.out} {out_problem}; give a file path in "
-                         "a folder you can write")
     loaded = load_sweep_records("weak_stimuli", args.results)
     if not loaded.records:
         raise SystemExit(f"weak_stimuli: {args.results} holds no trial records (trials/*.json)")
@@ -69,7 +66,7 @@ def main(argv=None) -> int:
                          f"{len(without_log)} trials that waited for an event; give the "
                          "--logs folder of the sweep that wrote the records")
     text = report_markdown(misses, without_log, trials, args.controller,
-                           f"Missed memorized events of `{args.results.name}`")
+                           title(args.results))
     for trial_id in without_log:
         print(f"weak_stimuli: no log for {trial_id} in {args.logs}; not counted",
               file=sys.stderr)

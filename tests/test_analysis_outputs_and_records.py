@@ -147,3 +147,115 @@ def test_a_line_a_script_ends_with_is_led_by_its_name():
     with pytest.raises(SystemExit) as stopped:
         script_output.run_script(main, "some_script", [])
     assert str(stopped.value) == "some_script: error: results: holds nothing"
+
+
+# --- an existing file at a script's output is replaced only when the script wrote it ---
+
+def named_report_arguments(junk: str, out: str) -> dict[str, list[str]]:
+    """Each script that writes a report (a bare table, a JSON list of rows) to a file the
+    user names, with `junk` for what it reads and `out` for the report."""
+    return {"choose_corrective_thresholds": [junk, junk, out],
+            "choose_ensemble_thresholds": [junk, out],
+            "compare_geometry": [out, junk, junk],
+            "compare_hands": [out, junk, junk],
+            "detection_quality": [out, junk],
+            "hold_creep": [junk, junk, "--out", out],
+            "judge_corrective_triggers": [out],
+            "measure_load_lift": ["--events", junk, "--json", out],
+            "roc_from_sweep_logs": [junk, out],
+            "weak_stimuli": [junk, junk, "--out", out]}
+
+
+USERS_FILES = {"sweep_table": "| controller | well-placed ~Hold |\n|---|---|\n",
+               "json": '{"trial_id": "mine"}\n', "notes": "my notes\n"}
+
+
+@pytest.mark.parametrize("content", sorted(USERS_FILES))
+@pytest.mark.parametrize("name", sorted(named_report_arguments("j", "o")))
+def test_a_file_the_script_did_not_write_is_kept_and_refused_before_any_work(name, content,
+                                                                             tmp_path):
+    junk = tmp_path / "junk"  # inputs that exist but hold junk: read, they would be refused
+    junk.mkdir()
+    out = tmp_path / "mine.md"
+    out.write_text(USERS_FILES[content])
+    done = run_script(name, named_report_arguments(str(junk), str(out))[name], tmp_path)
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    first = USERS_FILES[content].splitlines()[0]
+    assert len(lines) == 1, lines
+    assert lines[0].startswith(f"{name}: error: {out} exists and is not a "), lines
+    assert lines[0].endswith(f"this script writes (its first line is {first!r}); give another "
+                             "file name, or remove it yourself"), lines
+    assert out.read_text() == USERS_FILES[content]
+    assert sorted(tmp_path.iterdir()) == [junk, out]
+
+
+def test_every_script_writing_a_named_report_declares_its_title():
+    """A report is written through write_report or declared with add_output: none escapes
+    the rule by writing its own way."""
+    writers = {path.stem for path in ANALYSIS.glob("*.py")
+               if re.search(r"\bwrite_report\(|rows=ROW_KEYS", path.read_text(encoding="utf-8"))}
+    assert writers == set(named_report_arguments("j", "o"))
+
+
+def test_a_report_of_the_script_is_replaced_and_one_of_another_title_is_not(sweep, tmp_path):
+    out = tmp_path / "quality.md"
+    for _ in range(2):
+        done = run_script("detection_quality", [str(out), str(sweep)], tmp_path)
+        assert done.returncode == 0, done.stderr
+    assert out.read_text().startswith("# Detection quality and paired comparison\n")
+    before = out.read_bytes()
+    done = run_script("detection_quality", [str(out), str(sweep), "--title", "Mine"], tmp_path)
+    assert done.returncode == EXIT_ERROR, done.stderr
+    assert ("is not a report this script writes (its first line is '# Detection quality and "
+            "paired comparison')") in done.stderr
+    assert out.read_bytes() == before
+
+
+def test_a_file_put_at_the_report_during_the_work_is_kept(tmp_path):
+    """write_report asks again when it writes: a file that came during the work is kept."""
+    out = tmp_path / "report.md"
+    out.write_text("my notes\n")
+    with pytest.raises(SystemExit, match=r"^detection_quality: error: .*report.md exists and is "
+                                         r"not a report this script writes"):
+        script_output.write_report(out, "# Detection quality\n", script="detection_quality")
+    assert out.read_text() == "my notes\n"
+    table = tmp_path / "table.md"
+    table.write_text("# My table\n")
+    with pytest.raises(SystemExit, match="is not a table this script writes"):
+        script_output.write_report(table, "| a |\n", script="judge_corrective_triggers",
+                                   start=script_output.MARKDOWN_TABLE_START)
+
+
+def named_figure_arguments(junk: str, out: str) -> dict[str, list[str]]:
+    """Each script that writes a figure to a file the user names."""
+    return {"compare_ra_transients": [out], "explain_open_loop": [out],
+            "linkage_figure": [out], "make_success_maps": [junk, "--file", out]}
+
+
+@pytest.mark.parametrize("name", sorted(named_figure_arguments("j", "o")))
+def test_a_figure_the_user_names_is_replaced_only_with_overwrite(name, tmp_path):
+    from tegrasp_drake.figures.figure_files import new_figure, save_figure
+    junk = tmp_path / "junk"
+    junk.mkdir()
+    out = save_figure(new_figure(1, 1), tmp_path / "photo.png")
+    before = out.read_bytes()
+    done = run_script(name, named_figure_arguments(str(junk), str(out))[name], tmp_path)
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    assert done.stderr.strip() == (f"{name}: error: {out} exists (an earlier figure); pass "
+                                   "--overwrite to replace it, or give a new file name")
+    assert out.read_bytes() == before
+
+
+def test_a_named_figure_is_replaced_with_overwrite_and_the_folders_own_without(sweep,
+                                                                              tmp_path):
+    from tegrasp_drake.figures.figure_files import new_figure, save_figure
+    out = save_figure(new_figure(1, 1), tmp_path / "photo.png")
+    before = out.read_bytes()
+    done = run_script("make_success_maps", [str(sweep), "--file", str(out), "--overwrite"],
+                      tmp_path)
+    assert done.returncode == 0, done.stderr
+    assert out.read_bytes() != before
+    for _ in range(2):  # RESULTS/success_maps.png, the sweep folder's own figure
+        done = run_script("make_success_maps", [str(sweep)], tmp_path)
+        assert done.returncode == 0, done.stderr

@@ -173,13 +173,13 @@ def _plot_sweep(args, out) -> str:
 
 
 def run(args) -> int:
+    if args.what == "events" and args.source is not None:  # a command line that does not parse
+        args.usage_error(f"`tegrasp plot events` takes no LOG or RESULTS (got "
+                         f"{shown(args.source)}); give the events folder as --events DIR")
     out = output_path(args)
     logger.info(f"plot {args.what}: reading "
                 f"{args.source or args.events or 'the memorized events'}, writing {out}")
     if args.what == "events":
-        if args.source is not None:
-            raise SystemExit(f"tegrasp: error: `tegrasp plot events` takes no LOG or RESULTS "
-                             f"(got {shown(args.source)}); give the events folder as --events DIR")
         written = _plot_events(args, out)
     elif args.what in TRIAL_FIGURES:
         from tegrasp_drake.rig.typed_yaml import ConfigError

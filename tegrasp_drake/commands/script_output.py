@@ -10,8 +10,9 @@ import sys
 from tegrasp_drake.commands.error_boundary import EXIT_ERROR, EXIT_USAGE, internal_error
 from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_path,
                                                 figure_replace_problem)
-from tegrasp_drake.rig.files import (MARKDOWN_START, UserPathError, error_line, folder_problem,
-                                     output_file_problem, write_atomically)
+from tegrasp_drake.rig.files import (MARKDOWN_START, MARKDOWN_TABLE_START, UserPathError,
+                                     error_line, folder_problem, output_file_problem,
+                                     write_atomically)
 from tegrasp_drake.rig.usage_parser import UsageParser
 from tegrasp_drake.rig.echo import shown
 
@@ -21,7 +22,13 @@ def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
     """Writes `text` to `path` whole (rig.files.write_atomically: an earlier report stays as it
     was when it cannot) and returns `path`; SystemExit with one line, `<script>: cannot write
     <path>: <why>; <what to do>`, when it cannot. `start` is how a report of `path`'s kind
-    starts (MARKDOWN_START; MARKDOWN_TABLE_START for a bare table)."""
+    starts (MARKDOWN_START; MARKDOWN_TABLE_START for a bare table). An existing file is
+    replaced only when its first line is `text`'s (report_replace_problem): the user's notes
+    or another script's report at `path` are never lost."""
+    kind = "table" if start == MARKDOWN_TABLE_START else "report"
+    problem = report_replace_problem(path, text.split("\n", 1)[0], kind)
+    if problem:
+        raise SystemExit(f"{script}: error: {path} {problem}")
     try:
         return write_atomically(path, text, start=start)
     except UserPathError as error:
@@ -49,19 +56,29 @@ class _ScriptParser(UsageParser):
         self._workers_default = None  # add_workers's default, once it is added
 
     def add_output(self, *names, figure: bool = False, folder: bool = False,
+                   title=None, rows: tuple[str, ...] = (),
                    reads: tuple[str, str] | None = None, **keywords):
         """add_argument for a file the script writes (a report; a figure when `figure`), or
         a folder it writes in (`folder`: its reports, its cache): parse_args refuses one it
-        cannot write (refuse_unusable_output, refuse_unusable_folders) before any work. One
-        it also reads first (`reads`: what its errors call it, and the advice) is checked as
-        an input first (add_input)."""
+        cannot write (refuse_unusable_output, refuse_unusable_folders) before any work. A
+        report's `title` is the first line the script writes (or a function of the parsed
+        arguments giving it): an existing file is replaced only when it starts so; a JSON
+        list of `rows` (the keys of each), only when it is one (rows_replace_problem). A figure
+        the user names adds --overwrite, without which an existing figure is kept, as
+        `tegrasp plot`. One it also reads first (`reads`: what its errors call it, and the
+        advice) is checked as an input first (add_input), and needs no title: the script
+        edits it in its own places (update_results_page: between its markers)."""
         if figure and folder:
             raise ValueError("add_output: an output is a figure or a folder, not both")
+        if title is None and not (figure or folder or reads or rows):
+            raise ValueError("add_output: a report needs the title line the script writes")
         action = self.add_argument(*names, **keywords)
         if reads:
             self._inputs.append((action.dest, *reads, folder))
-        self._outputs.append((action.dest, "figure" if figure else
-                              "folder" if folder else "report"))
+        if figure and "--overwrite" not in self._option_string_actions:
+            self.add_argument("--overwrite", action="store_true", help=OVERWRITE_HELP)
+        self._outputs.append((action.dest, "figure" if figure else "folder" if folder
+                              else "rows" if rows else "report", rows or title))
         return action
 
     def add_input(self, *names, what: str, advice: str, folder: bool = True, **keywords):
@@ -113,14 +130,20 @@ class _ScriptParser(UsageParser):
             for path in paths if isinstance(paths, list) else [paths]:
                 if path is not None:
                     refuse_unusable_input(self._script, path, what, advice, folder=folder)
-        for destination, kind in self._outputs:
+        for destination, kind, title in self._outputs:
             path = getattr(parsed, destination)
             if path is None:
                 continue
             if kind == "folder":
                 refuse_unusable_folders(self._script, path)
+            elif kind == "rows":
+                refuse_unusable_output(self._script, path, rows=title)
+            elif kind == "figure":
+                refuse_unusable_output(self._script, path, figure=True,
+                                       overwrite=parsed.overwrite)
             else:
-                refuse_unusable_output(self._script, path, figure=kind == "figure")
+                refuse_unusable_output(self._script, path, edited=title is None,
+                                       title=title(parsed) if callable(title) else title)
         return parsed
 
     def _workers_within_cores(self, workers: int | None, oversubscribe: bool) -> int:
@@ -301,16 +324,86 @@ def refuse_unusable_folders(script: str, *folders) -> None:
                              "folder you can write in")
 
 
-def refuse_unusable_output(script: str, path, *, figure: bool = False) -> None:
-    """SystemExit with one line unless `path` can be written as a script's report, or its
-    figure when `figure` (a suffix naming a figure format, figure_files.check_figure_path;
-    an existing file only if it is a figure of that format, figure_replace_problem),
-    (rig.files.output_file_problem); asked before the work starts."""
+def refuse_unusable_output(script: str, path, *, figure: bool = False, overwrite: bool = False,
+                           title: str | None = None, edited: bool = False,
+                           rows: tuple[str, ...] = ()) -> None:
+    """SystemExit with one line unless `path` can be written (rig.files.output_file_problem)
+    as a script's report, whose first line is `title` (an existing file only if it starts
+    so: report_replace_problem; a bare table's title is its header row), or as a figure the
+    user named when `figure` (a suffix naming a figure format, figure_files.check_figure_path;
+    an existing file only if it is a figure of that format, and only with `overwrite`:
+    figure_replace_problem, as `tegrasp plot --overwrite`), or as a file the script reads
+    and edits in its own places (`edited`, no title), or as a JSON list of `rows` (the keys
+    of each: rows_replace_problem); asked before the work starts."""
     if figure:
         try:
             check_figure_path(path)
         except FigureFormatError as error:
             raise SystemExit(f"{script}: error: {error}") from None
-    problem = output_file_problem(path) or (figure_replace_problem(path) if figure else None)
+    elif title is None and not (edited or rows):
+        raise ValueError("refuse_unusable_output: a report needs the title line it starts with")
+    problem = output_file_problem(path)
     if problem:
         raise SystemExit(f"{script}: cannot write {path}: {problem}")
+    problem = (figure_replace_problem(path, overwrite=overwrite) if figure else None if edited
+               else rows_replace_problem(path, rows) if rows
+               else report_replace_problem(path, title, "table" if title.startswith("| ")
+                                           else "report"))
+    if problem:
+        raise SystemExit(f"{script}: error: {path} {problem}")
+
+
+def rows_replace_problem(path, keys: tuple[str, ...]) -> str | None:
+    """Why a script's JSON list of rows, each with `keys`, may not replace the file at `path`,
+    in words that follow it, or None: only a JSON list of such rows is one it wrote (the
+    user's result or notes are not). Read up to _ROWS_BYTES."""
+    import json
+    from tegrasp_drake.rig.files import read_bounded
+    try:
+        raw = read_bounded(path, _ROWS_BYTES)
+    except (FileNotFoundError, NotADirectoryError, IsADirectoryError):
+        return None  # nothing there, or a folder (output_file_problem says so)
+    except OSError as error:  # InputTooLargeError too: no list of rows is that long
+        return (f"cannot be read to check what it is ({error.strerror or error}); give another "
+                "file name")
+    try:
+        data = json.loads(raw)
+    except ValueError:
+        data = None
+    if isinstance(data, list) and all(isinstance(row, dict) and set(keys) <= set(row)
+                                      for row in data):
+        return None
+    first = raw.split(b"\n", 1)[0].rstrip(b"\r").decode("utf-8", errors="replace")
+    return (f"exists and is not a JSON list of rows this script writes (its first line is "
+            f"{shown(first) if first else 'empty'}); give another file name, or remove it "
+            "yourself")
+
+
+_ROWS_BYTES = 16 * 1024 * 1024
+
+
+# --overwrite of a script writing a figure the user names, in `tegrasp plot`'s words.
+OVERWRITE_HELP = ("replace an existing figure at the path given (a file that is not a figure "
+                  "of its format is never replaced)")
+_HEAD_BYTES = 4096  # enough for any title line a script writes
+
+
+def report_replace_problem(path, title: str, kind: str = "report") -> str | None:
+    """Why a script's report (a bare `table`) whose first line is `title` may not replace the
+    file at `path`, in words that follow it, or None: only a file whose first line is
+    `title` is one this script wrote (a sweep's table, the user's notes or JSON are not).
+    Only the head is read."""
+    try:
+        with open(path, "rb") as existing:
+            head = existing.read(_HEAD_BYTES)
+    except (FileNotFoundError, NotADirectoryError, IsADirectoryError):
+        return None  # nothing there, or a folder (output_file_problem says so)
+    except OSError as error:
+        return (f"cannot be read to check what it is ({error.strerror or error}); give another "
+                "file name")
+    first = head.split(b"\n", 1)[0].rstrip(b"\r")
+    if first.decode("utf-8", errors="replace") == title:
+        return None
+    shown_first = shown(first.decode("utf-8", errors="replace")) if first else "empty"
+    return (f"exists and is not a {kind} this script writes (its first line is {shown_first}); "
+            "give another file name, or remove it yourself")

@@ -27,8 +27,8 @@ from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance, load_typed,
-                                          loaded_with_overrides, read_yaml_file,
-                                          require_fields, require_mapping)
+                                          loaded_with_overrides, parse_yaml, read_yaml_text,
+                                          require_fields, require_mapping, top_level_tag)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.rig.echo import shorten, shown
 
@@ -440,11 +440,22 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     return config
 
 
+# The tag of the other station (scenario.SimulatedStationConfig), which a hardware config
+# file may hold by mistake: the top-level tag is dropped on reading, so it is asked apart.
+_SIMULATED_STATION_TAG = "!SimulatedStationConfig"
+
+
 @public_api
 def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
     """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
-    data = read_yaml_file(filename, "the hardware config")
+    text = read_yaml_text(filename, "the hardware config")
+    data = parse_yaml(text, str(filename)) if text else None
+    if text and top_level_tag(text) == _SIMULATED_STATION_TAG:
+        raise ConfigError(f"{filename}: the file is a {_SIMULATED_STATION_TAG}, a simulated "
+                          "station, not a hardware config: `tegrasp hardware` needs a "
+                          "!HardwareStationConfig (or untagged hardware fields: arm, gripper, "
+                          "tactile, ...); a simulated station runs with `tegrasp trial`")
     # Not a request for the default devices (/dev/ttyUSB0, /dev/ttyACM0): name them.
     require_fields(data, filename, "the hardware config", "give the devices' fields (arm, "
                    "gripper, tactile, ...; `tegrasp emulate all --write-config FILE` writes "

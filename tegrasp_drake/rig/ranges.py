@@ -17,6 +17,7 @@ from tegrasp_drake.rig.number_text import number_text
 _KEY = "tegrasp_range"
 _LENGTH_KEY = "tegrasp_length"
 _DISTINCT_KEY = "tegrasp_distinct"  # a list of names, each at most once
+_SETTINGS_KEY = "tegrasp_settings"  # a list of KEY=VALUE settings (as --set), not names
 
 
 @dataclasses.dataclass(frozen=True)
@@ -276,6 +277,17 @@ def distinct_names(*, items: str):
     return dataclasses.field(default_factory=list, metadata={_DISTINCT_KEY: items})
 
 
+def settings():
+    """A list field of KEY=VALUE settings, each one as `--set` takes it (empty by default):
+    its errors call the items settings and show one (grasp.grip_force=50.0), not names."""
+    return dataclasses.field(default=(), metadata={_SETTINGS_KEY: True})
+
+
+def holds_settings(field: dataclasses.Field) -> bool:
+    """Whether `field` was declared with settings()."""
+    return _SETTINGS_KEY in field.metadata
+
+
 def _check_distinct(value, field: dataclasses.Field, source: str, path: str) -> None:
     if _DISTINCT_KEY not in field.metadata or not isinstance(value, (list, tuple)):
         return
@@ -397,8 +409,8 @@ def _drake_fields(cls) -> tuple:
 
 def undeclared_name_lists(*roots) -> list[str]:
     """"Class.field" of every list-of-text field reachable from `roots` (dataclasses) not
-    declared with distinct_names: each such list names things, and a repeated name is refused
-    only where it is declared."""
+    declared with distinct_names (or settings()): each such list names things, and a repeated
+    name is refused only where it is declared."""
     seen, missing, pending = set(), [], list(roots)
     while pending:
         cls = pending.pop()
@@ -409,7 +421,7 @@ def undeclared_name_lists(*roots) -> list[str]:
         for field in dataclasses.fields(cls):
             hint = hints[field.name]
             if (typing.get_origin(hint) in (list, tuple) and typing.get_args(hint)[:1] == (str,)
-                    and _DISTINCT_KEY not in field.metadata):
+                    and _DISTINCT_KEY not in field.metadata and not holds_settings(field)):
                 missing.append(f"{cls.__module__}.{cls.__qualname__}.{field.name}")
             pending.extend(_config_classes(hint))
     return sorted(missing)

@@ -28,7 +28,7 @@ from tegrasp_drake.rig.core_schema_yaml import (CORE_FLOAT, FLOAT_TAG, INT_TAG, 
 from tegrasp_drake.rig.echo import shorten, shown, undecoded_byte
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.number_text import float_beyond_problem, number_text
-from tegrasp_drake.rig.ranges import number_problem, python_scalar, range_of
+from tegrasp_drake.rig.ranges import holds_settings, number_problem, python_scalar, range_of
 from tegrasp_drake.rig.unset_fields import empty_meaning
 from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
 
@@ -104,6 +104,14 @@ def read_yaml_file_cached(path: str | pathlib.Path, what: str):
             del _PARSED_FILES[next(iter(_PARSED_FILES))]
         _PARSED_FILES[key] = data
     return copy.deepcopy(_PARSED_FILES[key])
+
+
+def top_level_tag(text: str) -> str | None:
+    """The YAML tag (`!SimulatedStationConfig`) of `text`'s top-level mapping, which parse_yaml
+    drops, or None; `text` is YAML parse_yaml has read."""
+    root = compose(text)
+    tag = getattr(root, "tag", "")
+    return tag if isinstance(root, yaml.MappingNode) and tag.startswith("!") else None
 
 
 def require_fields(data, path, what: str, advice: str) -> None:
@@ -486,7 +494,7 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
             raise ConfigError(f"{source}: field '{path}' is empty: give a value, or leave it "
                               f"out for {means}")
         _check_value(value, hints[key], path, source, stored,
-                     getattr(range_of(fields[key]), "unit", ""))
+                     getattr(range_of(fields[key]), "unit", ""), holds_settings(fields[key]))
     for field in dataclasses.fields(schema):
         required = (field.default is dataclasses.MISSING
                     and field.default_factory is dataclasses.MISSING)
@@ -706,8 +714,9 @@ def _refuse_tag(value, path: str, source: str) -> None:
 
 
 def _check_value(value, hint, path: str, source: str, stored: bool = False,
-                 unit: str = "") -> None:
-    """check_fields's check of one value of type `hint`; `unit`: its field's declared unit."""
+                 unit: str = "", settings: bool = False) -> None:
+    """check_fields's check of one value of type `hint`; `unit`: its field's declared unit;
+    `settings`: its field is a list of KEY=VALUE settings (ranges.settings), said so."""
     origin = typing.get_origin(hint)
     if origin not in (typing.Union, types.UnionType):
         _refuse_tag(value, path, source)
@@ -719,7 +728,7 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False,
             raise ConfigError(f"{source}: field '{path}' is null: give a value, or leave "
                               "the field out to take its default")
         if len(members) == 1:
-            _check_value(value, members[0], path, source, stored, unit)
+            _check_value(value, members[0], path, source, stored, unit, settings)
         else:
             member, value = _union_member(value, members, path, source)
             _check_value(value, member, path, source, stored)
@@ -731,9 +740,16 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False,
             if element is str and isinstance(value, str) and not assignment_problem(value):
                 words = "KEY=VALUE settings"  # one setting where a list of them belongs
                 fix = f" (write it as a list: [{shorten(value)}])"
+            elif settings:
+                words = "KEY=VALUE settings"
+                fix = f" (each one as --set takes it: {_settings_example(path)})"
             raise ConfigError(f"{source}: field '{path}' must be a list of {words}, got "
                               f"{_describe(value)}{fix}")
         for k, item in enumerate(value):
+            if settings and not isinstance(item, str):
+                raise ConfigError(f"{source}: field '{path}[{k}]' must be a KEY=VALUE setting "
+                                  f"(as --set), got {_describe(item)} (write "
+                                  f"{_settings_example(path)})")
             _check_value(item, element, f"{path}[{k}]", source, stored, unit)
     elif origin in (dict, collections.abc.Mapping):
         if not isinstance(value, dict):
@@ -748,6 +764,11 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False,
         _check_text(value, path, source)
     else:
         check_fields(value, hint, source, path, stored=stored)
+
+
+def _settings_example(path: str) -> str:
+    """A list of one setting, written as the field at `path` takes it."""
+    return f"{path.rsplit('.', 1)[-1]}: [grasp.grip_force=50.0]"
 
 
 def _text_as_value_hint(value, hint, unit: str = "") -> str:

@@ -15,7 +15,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tegrasp_drake.rig.api_boundary import describe_hint, public_dataclass, value_matches
-from tegrasp_drake.rig.ranges import SEED_RANGE, Range, bounded, check_ranges, field_range
+from tegrasp_drake.rig.ranges import (SEED_RANGE, Range, bounded, check_ranges, field_range,
+                                      settings)
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, PAPER_CONTROLLERS
 from tegrasp_drake.rig import objects
@@ -95,7 +96,7 @@ class SweepSpec:
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
     user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
     # `--set key=value` assignments for every trial's scenario (not PER_TRIAL_SCENARIO_FIELDS)
-    scenario_overrides: tuple[str, ...] = ()
+    scenario_overrides: tuple[str, ...] = settings()
 
 
 # The largest perturbation draw_perturbation can draw: each draw is U(-b, b) with b at most the

@@ -16,7 +16,7 @@ from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
+from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, settings
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
                                           keys_overlap, optional_field,
@@ -40,7 +40,7 @@ _NAME_MAX_CHARACTERS = 64
 class TransferWorld:
     """A world: a scenario preset of the built-in scenario file, then `--set` overrides."""
     scenario: str
-    overrides: tuple[str, ...] = ()
+    overrides: tuple[str, ...] = settings()
 
 
 @dataclasses.dataclass(frozen=True)

@@ -115,3 +115,14 @@ def test_a_log_given_to_plot_events_is_refused(tmp_path, capfd):
     code, text = run_cli(["plot", "events", "trial.npz", "--out", str(tmp_path / "x.png")],
                          capfd)
     assert_one_line_error(code, text, "takes no LOG", "--events DIR")
+
+
+# Rule: an extra positional argument is a command line that does not parse: a usage error
+# (exit 2, the --help pointer), before any output is checked, as argparse's own.
+def test_an_extra_argument_to_plot_events_is_a_usage_error(tmp_path, capfd):
+    code, text = run_cli(["plot", "events", "EXTRA_ARG", "--out", str(tmp_path / "x.png")],
+                         capfd)
+    assert code == 2, text
+    assert_one_line_error(code, text, "takes no LOG", "'EXTRA_ARG'", "--events DIR",
+                          "(see tegrasp plot --help)")
+    assert list(tmp_path.iterdir()) == []

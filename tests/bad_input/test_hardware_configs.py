@@ -121,6 +121,21 @@ def test_a_hardware_config_without_fields_is_refused(tmp_path, text):
     refusal(lambda: T.LoadSweepSpec(spec), str(spec), "is empty")
 
 
+# Rule: a file tagged as the simulated station is not an empty hardware config: it is said
+# to be the other station, with the tag `tegrasp hardware` needs and where it runs instead.
+@pytest.mark.parametrize("text", ["!SimulatedStationConfig {}\n",
+                                  "!SimulatedStationConfig {time_step: 0.001}\n"])
+def test_a_simulated_station_given_as_hardware_config_is_named(tmp_path, capfd, text):
+    config = tmp_path / "hw.yaml"
+    config.write_text(text)
+    code, output = run_cli(["hardware", "--config", str(config), "--duration", "1"], capfd)
+    assert code == 1, output
+    assert_one_line_error(code, output, f"{config}: the file is a !SimulatedStationConfig, a "
+                          "simulated station", "needs a !HardwareStationConfig (or untagged "
+                          "hardware fields", "runs with `tegrasp trial`")
+    assert "empty" not in output, output
+
+
 # Rule: an empty text or list is a value only where the field declares what empty means
 # (unset_fields) or where its default is itself empty; a field whose default is filled (an
 # LCM bus, a port, the joints that wrap) refuses an empty one naming the field, rather than

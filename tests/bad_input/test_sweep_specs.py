@@ -214,3 +214,42 @@ def test_a_sweep_override_out_of_range_names_its_entry_not_the_scenario_file(tmp
                            "field 'grasp.grip_force' must lie in [20, 235] N"), text
     assert text.endswith("got 5000.0; correct the entry, or drop it"), text
     assert "scenarios.yaml" not in text, text
+
+
+# Rule: a list of KEY=VALUE settings (a sweep's scenario_overrides, a transfer world's
+# overrides) is called that in its errors, with an example that runs, never "a list of names".
+@pytest.mark.parametrize("text, field, got", [
+    ("scenario_overrides: {object: {mass: 10}}\n", "scenario_overrides",
+     "got dict {'object': {'mass': 10}}"),
+    ("scenario_overrides: 3\n", "scenario_overrides", "got int 3"),
+])
+def test_scenario_overrides_that_are_no_list_are_called_settings_with_an_example(
+        tmp_path, capfd, text, field, got):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text(text)
+    code, output = run_cli(["sweep", "--spec", str(spec), "--dry-run",
+                            "--out", str(tmp_path / "out")], capfd)
+    assert_one_line_error(code, output, f"{spec}: field '{field}' must be a list of KEY=VALUE "
+                          f"settings, {got}", f"{field}: [grasp.grip_force=50.0]")
+    assert "names" not in output, output
+    assert not (tmp_path / "out").exists()
+    example = tmp_path / "example.yaml"  # the example the error gives loads
+    example.write_text(f"objects: [box]\n{field}: [grasp.grip_force=50.0]\n")
+    assert tegrasp_drake.LoadSweepSpec(example).scenario_overrides == ("grasp.grip_force=50.0",)
+
+
+def test_a_scenario_override_that_is_no_text_is_called_a_setting(tmp_path):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("scenario_overrides: [{object: {mass: 1}}]\n")
+    refusal(lambda: tegrasp_drake.LoadSweepSpec(spec), str(spec),
+            "field 'scenario_overrides[0]' must be a KEY=VALUE setting (as --set), got dict",
+            "scenario_overrides: [grasp.grip_force=50.0]")
+
+
+def test_a_transfer_world_override_that_is_no_list_is_called_settings(tmp_path):
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    spec = tmp_path / "transfer.yaml"
+    spec.write_text("worlds: {ideal: {scenario: memorizing_world, overrides: {grasp: 1}}}\n"
+                    "cells: [[ideal, ideal]]\n")
+    refusal(lambda: LoadTransferSpec(spec), str(spec), "field 'worlds.ideal.overrides' must "
+            "be a list of KEY=VALUE settings, got dict", "overrides: [grasp.grip_force=50.0]")
