@@ -27,6 +27,7 @@ from tegrasp_drake.rig.paths import package_events_dir
 from tegrasp_drake.rig.ranges import SEED_RANGE
 from tegrasp_drake.rig.files import JSON_ARRAY_START, write_atomically
 from tegrasp_drake.rig.typed_yaml import set_option
+from tegrasp_drake.rig.usage_parser import AppendSettings
 
 # The keys of every row, by which an earlier --json file of this script is known.
 ROW_KEYS = ("object", "offset_mm", "seed", "reach_load", "load_lift", "place_unload",
@@ -68,7 +69,7 @@ def main(argv=None) -> int:
                         default=["box", "thick_cylinder", "thin_cylinder"])
     parser.add_number("--seed", type=integer_option, default=600, allowed=SEED_RANGE)
     parser.add_workers()
-    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
+    parser.add_argument("--set", dest="overrides", action=AppendSettings, default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a scenario field of every trial")
     parser.add_output("--json", type=pathlib.Path, default=None, rows=ROW_KEYS,

@@ -26,6 +26,7 @@ from tegrasp_drake.commands.scenario_args import (add_events_argument, add_scena
                                                   controller_events, corrective_events,
                                                   scenario_from_arguments)
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
+from tegrasp_drake.rig.usage_parser import AppendSettings
 
 logger = logging.getLogger(__name__)
 
@@ -55,7 +56,7 @@ def register(subparsers) -> None:
     parser.add_argument("--config", metavar="FILE",
                         help="hardware config YAML (HardwareStationConfig fields); default: "
                         "the scenario's `station: !HardwareStationConfig {...}`")
-    parser.add_argument("--config-set", dest="config_overrides", action="append_settings",
+    parser.add_argument("--config-set", dest="config_overrides", action=AppendSettings,
                         default=[],
                         type=config_set_option, metavar="KEY=VALUE", help="override a hardware config field, e.g. "
                         "--config-set tactile.port=/dev/ttyACM1")

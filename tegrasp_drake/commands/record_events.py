@@ -19,6 +19,7 @@ from tegrasp_drake.rig.files import (absent_folders, folder_problem, free_space_
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.rig.typed_yaml import set_option
+from tegrasp_drake.rig.usage_parser import AppendSettings
 
 TEMPLATE_RUNS = 5  # recording/ensemble_events.py TEMPLATE_RUNS (imported late: drake)
 MAX_ENSEMBLE_RUNS = 50  # each is an ideal grasp of about 20 s wall
@@ -59,7 +60,7 @@ def register(subparsers) -> None:
                         help="record the object of this scenario file instead (your own object)")
     parser.add_argument("--scenario-name", default=None,
                         help="which scenario of --scenario (its object is recorded)")
-    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
+    parser.add_argument("--set", dest="overrides", action=AppendSettings, default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a field of the scenario of each object recorded "
                         "(repeatable)")

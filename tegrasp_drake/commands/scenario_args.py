@@ -9,6 +9,7 @@ from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.typed_yaml import ConfigError, read_yaml_file_cached, set_option
+from tegrasp_drake.rig.usage_parser import AppendSettings
 
 
 def add_scenario_arguments(parser) -> None:
@@ -16,7 +17,7 @@ def add_scenario_arguments(parser) -> None:
                         help="YAML file of named scenarios (default: the built-in file)")
     parser.add_argument("--scenario-name", default=DEFAULT_SCENARIO,
                         help="which scenario of the file (default: %(default)s)")
-    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
+    parser.add_argument("--set", dest="overrides", action=AppendSettings, default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a scenario field, e.g. --set object.name=thin_cylinder")
     parser.add_argument("--allow-long", action="store_true",

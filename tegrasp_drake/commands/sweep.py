@@ -50,6 +50,7 @@ from tegrasp_drake.sweep.spec import (
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
 from tegrasp_drake.rig.typed_yaml import ConfigError, set_option
+from tegrasp_drake.rig.usage_parser import AppendSettings
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
 DEFAULT_OUT = "results/sweep"
@@ -118,7 +119,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--logs", metavar="DIR", default=None,
                         help="also save each trial's log (trial.npz format) in DIR, for "
                         "re-scoring offline (analysis/detection_quality.py)")
-    parser.add_argument("--set", dest="overrides", action="append_settings", default=[],
+    parser.add_argument("--set", dest="overrides", action=AppendSettings, default=[],
                         type=set_option, metavar="KEY=VALUE",
                         help="override a field of every trial's scenario, after the spec's "
                         "scenario_overrides, e.g. --set "

@@ -28,7 +28,6 @@ class UsageParser(argparse.ArgumentParser):
         self._negative_number_matcher = VALUE_LIKE_A_NUMBER
         self.register("action", None, _StoreOnce)
         self.register("action", "store", _StoreOnce)
-        self.register("action", "append_settings", _AppendSettings)
 
     def parse_known_args(self, args=None, namespace=None):
         """argparse's parse_known_args, a text value of this parser's arguments that holds
@@ -86,9 +85,10 @@ class _StoreOnce(argparse._StoreAction):
         super().__call__(parser, namespace, values, option_string)
 
 
-class _AppendSettings(argparse._AppendAction):
+class AppendSettings(argparse._AppendAction):
     """argparse's `append` for KEY=VALUE settings (--set, --config-set), refusing one key
-    set twice to different values: neither silently wins."""
+    set twice to different values: neither silently wins. A class, not a registered name,
+    so that a subcommand registered under any parser (argparse's own) has it."""
 
     def __call__(self, parser, namespace, values, option_string=None):
         from tegrasp_drake.rig.echo import shown
