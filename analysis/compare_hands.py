@@ -18,6 +18,7 @@ import sys
 from tegrasp_drake.commands.script_output import (SWEEP_RESULTS_ADVICE, load_sweep_records,
                                                   run_script, script_parser, write_report)
 from tegrasp_drake.scenario.trial_result import TrialResult
+from tegrasp_drake.rig.echo import shown
 from tegrasp_drake.sweep.failure_classes import failure_class as trial_failure_class
 from tegrasp_drake.sweep.table import exact_mcnemar_p_value
 
@@ -114,6 +115,13 @@ def main(argv=None) -> int:
     parser.add_input("prismatic", type=pathlib.Path, nargs="+", what="prismatic folder",
                      advice=SWEEP_RESULTS_ADVICE)
     args = parser.parse_args(argv)
+    seen = {args.linkage.resolve(): "linkage folder"}
+    for folder in args.prismatic:  # one hand's trials read as the other's pair with themselves
+        if folder.resolve() in seen:
+            parser.refuse(f"prismatic folder {shown(str(folder))} is the "
+                          f"{seen[folder.resolve()]} given before it; give each hand's own "
+                          "`tegrasp sweep --out` folder, each once")
+        seen[folder.resolve()] = "prismatic folder"
     linkage, *prismatic_runs = load_folders(
         [args.linkage, *args.prismatic], names=["linkage folder"]
         + ["prismatic folder"] * len(args.prismatic))

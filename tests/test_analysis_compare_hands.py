@@ -54,3 +54,21 @@ def test_a_folder_with_a_corrupt_record_is_refused_before_anything_is_printed(tm
                                          f"{linkage}")
     assert capsys.readouterr() == ("", "")
     assert not out.exists()
+
+
+@pytest.mark.parametrize("second", ["{linkage}", "{linkage}/../linkage", "{prismatic}"])
+def test_one_folder_given_for_both_hands_or_twice_is_refused(tmp_path, capsys, second):
+    """One hand's trials compared with themselves would say the hands agree."""
+    linkage, prismatic, out = tmp_path / "linkage", tmp_path / "prismatic", tmp_path / "out.md"
+    for folder in (linkage, prismatic):
+        (folder / "trials").mkdir(parents=True)
+        shutil.copy(sorted(RECORDS.glob("*.json"))[0], folder / "trials")
+    again = second.format(linkage=linkage, prismatic=prismatic)
+    with pytest.raises(SystemExit) as refused:
+        compare_hands().main([str(out), str(linkage), str(prismatic), again])
+    given = "linkage" if "linkage" in second else "prismatic"
+    assert str(refused.value) == (
+        f"compare_hands: error: prismatic folder '{again}' is the {given} folder given before "
+        "it; give each hand's own `tegrasp sweep --out` folder, each once")
+    assert capsys.readouterr() == ("", "")
+    assert not out.exists()
