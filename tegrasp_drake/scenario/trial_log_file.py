@@ -712,16 +712,23 @@ def nonfinite_signals(arrays: dict) -> str | None:
 
 def logged_scenario(meta: dict):
     """(the Scenario of meta 'scenario', None) when the log stores one, (None, None) when not,
-    or (None, what is wrong) when its text is not a scenario."""
+    or (None, what is wrong) when its text is not a scenario or not a simulated one."""
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.scenario.scenario import scenario_from_yaml  # Drake: on use
     text = meta.get("scenario")
     if not isinstance(text, str):
         return None, None  # none stored, or not text (meta_problem names it)
     try:
-        return scenario_from_yaml(text, "meta 'scenario'"), None
+        scenario = scenario_from_yaml(text, "meta 'scenario'")
     except ConfigError as e:
         return None, shorten(str(e), 300)
+    from tegrasp_drake.hardware.config import HardwareStationConfig
+    if isinstance(scenario.station, HardwareStationConfig):  # no trial log of a real run
+        return None, ("meta 'scenario' names the real devices (station: "
+                      "!HardwareStationConfig), but a trial log is written by a simulated "
+                      "trial (tegrasp trial); a run on the devices is an LCM log, read by "
+                      "tegrasp replay")
+    return scenario, None
 
 
 @dataclasses.dataclass(frozen=True)

@@ -401,3 +401,11 @@ def test_a_correlation_one_round_off_past_one_is_read():
     result = TrialResult.from_dict(whole_result(**{"hold_success": False, "controller": "memorized",
                                     "final_mode": "Load", "transitions": transitions}))
     assert result.transitions[0].scores[0] > 1.0
+
+
+def test_a_trial_log_whose_scenario_names_the_real_devices_is_refused(tmp_path):
+    """A trial log comes from a simulated trial; a run on the devices is an LCM log."""
+    hardware = SCENARIO + "station: !HardwareStationConfig {}\n"
+    log_refusal(trial_log_with(tmp_path / "trial.npz", {"scenario": hardware}),
+                "meta 'scenario' names the real devices (station: !HardwareStationConfig), but "
+                "a trial log is written by a simulated trial (tegrasp trial)")
