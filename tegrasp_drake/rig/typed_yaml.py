@@ -331,6 +331,33 @@ def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: in
     return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 
 
+def key_set_twice(settings) -> tuple[int, int] | None:
+    """(i, k) of the first KEY=VALUE setting k of `settings` that sets the key setting i set,
+    to another value, or None: a list of settings the user wrote (--set given twice, a spec's
+    scenario_overrides) may not set one key twice, as a YAML file may not repeat a key:
+    neither may silently win. A text that is no setting is skipped (its own check names it)."""
+    first = {}
+    for k, setting in enumerate(settings):
+        if not isinstance(setting, str) or assignment_problem(setting):
+            continue
+        key = assignment_key(setting)
+        if key in first and settings[first[key]] != setting:
+            return first[key], k
+        first.setdefault(key, k)
+    return None
+
+
+def refuse_a_key_set_twice(settings, source: str, path: str) -> None:
+    """ConfigError naming `source` and the field `path` when `settings`, a list of KEY=VALUE
+    settings a file holds, sets one key twice to two values (key_set_twice)."""
+    twice = key_set_twice(settings)
+    if twice:
+        i, k = twice
+        raise ConfigError(f"{source}: field '{path}' sets {assignment_key(settings[k])} twice "
+                          f"({shown(settings[i])} at [{i}], then {shown(settings[k])} at "
+                          f"[{k}]); set it once")
+
+
 def set_words(assignment: str, option: str = "--set") -> str:
     """How an error names a --set assignment (or one of another `option`, such as
     --config-set): `--set 'KEY=VALUE'`, the value cut to about ECHO_CHARS."""

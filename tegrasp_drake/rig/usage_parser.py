@@ -92,10 +92,11 @@ class AppendSettings(argparse._AppendAction):
 
     def __call__(self, parser, namespace, values, option_string=None):
         from tegrasp_drake.rig.echo import shown
-        from tegrasp_drake.rig.typed_yaml import assignment_key
-        key = assignment_key(values)
-        for earlier in getattr(namespace, self.dest, None) or ():
-            if assignment_key(earlier) == key and earlier != values:
-                parser.error(f"{option_string} sets {key} twice ({shown(earlier)}, then "
-                             f"{shown(values)}); set it once")
+        from tegrasp_drake.rig.typed_yaml import assignment_key, key_set_twice
+        given = [*(getattr(namespace, self.dest, None) or ()), values]
+        twice = key_set_twice(given)
+        if twice:
+            earlier = given[twice[0]]
+            parser.error(f"{option_string} sets {assignment_key(values)} twice "
+                         f"({shown(earlier)}, then {shown(values)}); set it once")
         super().__call__(parser, namespace, values, option_string)

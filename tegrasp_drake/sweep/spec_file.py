@@ -6,7 +6,8 @@ from collections.abc import Collection
 from dataclasses import dataclass
 
 from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
-                                          require_fields, require_mapping)
+                                          refuse_a_key_set_twice, require_fields,
+                                          require_mapping)
 from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
                                       USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
                                       is_number, product_grid, user_object, validate_spec)
@@ -38,9 +39,12 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
 
 def sweep_spec_from_fields(fields, source: str, *,
                            builtin_objects: Collection[str] = BUILTIN_OBJECTS,
-                           controllers: Collection[str] = CONTROLLER_NAMES) -> SweepSpec:
+                           controllers: Collection[str] = CONTROLLER_NAMES,
+                           written: bool = True) -> SweepSpec:
     """The SweepSpec of a spec file's parsed YAML data (LoadSweepSpec), or of a section of
-    another file holding the same fields (a transfer spec's `sweep`); errors name `source`."""
+    another file holding the same fields (a transfer spec's `sweep`); errors name `source`.
+    written: the fields are the user's as written, whose scenario_overrides may not set one
+    key twice (False for overrides the package composed, a world's preset before them)."""
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
@@ -55,6 +59,9 @@ def sweep_spec_from_fields(fields, source: str, *,
     for name in ("objects", "controllers", "scenario_overrides"):
         if name in fields:
             fields[name] = tuple(fields[name])
+    if written:
+        refuse_a_key_set_twice(fields.get("scenario_overrides", ()), source,
+                               "scenario_overrides")
     if "randomisation" in fields:
         fields["randomisation"] = RandomisationConfig(**fields["randomisation"])
     if "user_objects" in fields:

@@ -19,7 +19,7 @@ from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, settings
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
-                                          keys_overlap, optional_field,
+                                          keys_overlap, optional_field, refuse_a_key_set_twice,
                                           read_yaml_file, read_yaml_file_cached, require_mapping,
                                           require_fields)
 
@@ -174,7 +174,8 @@ def check_worlds(spec: TransferSpec, source: str) -> None:
         try:
             sweep_spec_from_fields(
                 {"scenario_overrides": list(running_sweep(spec, name).scenario_overrides),
-                 "controllers": list(spec.sweep.controllers)}, f"{source} [worlds.{name}]")
+                 "controllers": list(spec.sweep.controllers)}, f"{source} [worlds.{name}]",
+                written=False)  # the world's preset, then its overrides: these refine it
         except ConfigError as error:
             _refuse_world_entry(spec, name, source)
             raise ConfigError(str(error).replace("field 'scenario_overrides'", "the world's "
@@ -235,6 +236,7 @@ def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
         check_fields(fields, TransferWorld, source, f"worlds.{name}")
         world = TransferWorld(scenario=fields["scenario"],
                               overrides=tuple(fields.get("overrides", ())))
+        refuse_a_key_set_twice(world.overrides, source, f"worlds.{name}.overrides")
         for assignment in world.overrides:
             key = assignment_key(assignment)
             if any(keys_overlap(key, f) for f in PER_TRIAL_SCENARIO_FIELDS):

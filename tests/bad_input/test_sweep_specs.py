@@ -253,3 +253,43 @@ def test_a_transfer_world_override_that_is_no_list_is_called_settings(tmp_path):
                     "cells: [[ideal, ideal]]\n")
     refusal(lambda: LoadTransferSpec(spec), str(spec), "field 'worlds.ideal.overrides' must "
             "be a list of KEY=VALUE settings, got dict", "overrides: [grasp.grip_force=50.0]")
+
+
+@pytest.mark.parametrize("kind, text, where", [
+    ("sweep", "objects: [box]\nscenario_overrides: [grasp.hold_s=2, grasp.grip_force=50, "
+     "grasp.hold_s=3]\n", "field 'scenario_overrides'"),
+    ("sensitivity", "parameters: [gripper.pad_friction]\nsweep: {objects: [box], "
+     "scenario_overrides: [grasp.hold_s=2, grasp.grip_force=50, grasp.hold_s=3]}\n",
+     "[sweep]: field 'scenario_overrides'"),
+    ("transfer", "worlds:\n  a: {scenario: memorizing_world, overrides: [grasp.hold_s=2, "
+     "grasp.grip_force=50, grasp.hold_s=3]}\ncells: [[a, a]]\nsweep: {objects: [box], "
+     "controllers: [memorized], grid: [[0.0, 0.0]], attempts: 1}\n",
+     "field 'worlds.a.overrides'"),
+])
+def test_a_spec_list_setting_one_key_twice_is_refused(tmp_path, kind, text, where):
+    """Neither value silently wins, as for --set given twice and a repeated YAML key."""
+    from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
+    from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    load = {"sweep": LoadSweepSpec, "sensitivity": LoadSensitivitySpec,
+            "transfer": LoadTransferSpec}[kind]
+    spec = tmp_path / "s.yaml"
+    spec.write_text(text)
+    with pytest.raises(ConfigError) as refused:
+        load(spec)
+    assert one_line_of(refused.value) == (
+        f"{spec}{' ' if where.startswith('[') else ': '}{where} sets grasp.hold_s twice "
+        "('grasp.hold_s=2' at [0], then 'grasp.hold_s=3' at [2]); set it once")
+
+
+def test_a_spec_list_repeating_one_setting_and_a_world_refining_its_preset_load(tmp_path):
+    from tegrasp_drake.sweep.spec_file import LoadSweepSpec
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    spec = tmp_path / "s.yaml"
+    spec.write_text("objects: [box]\nscenario_overrides: [grasp.hold_s=2, grasp.hold_s=2]\n")
+    assert LoadSweepSpec(spec).scenario_overrides == ("grasp.hold_s=2", "grasp.hold_s=2")
+    # a world's override of a field its preset sets refines the preset: not "twice"
+    spec.write_text("worlds:\n  a: {scenario: memorizing_world, overrides: "
+                    "[gripper.model=linkage]}\ncells: [[a, a]]\nsweep: {objects: [box], "
+                    "controllers: [memorized], grid: [[0.0, 0.0]], attempts: 1}\n")
+    assert LoadTransferSpec(spec).worlds["a"].overrides == ("gripper.model=linkage",)
