@@ -199,7 +199,7 @@ def test_a_sweep_override_out_of_range_names_its_entry_not_the_scenario_file(tmp
     from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
     from tegrasp_drake.sweep.spec_file import LoadSweepSpec
     sweep = ("{objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], attempts: 1, "
-             "scenario_overrides: [grasp.grip_force=50, grasp.grip_force=5000.0]}")
+             "scenario_overrides: [grasp.hold_s=2.0, grasp.grip_force=5000.0]}")
     spec = tmp_path / "s.yaml"
     if kind == "sweep":
         spec.write_text(f"{sweep[1:-1]}\n".replace("], ", "]\n").replace("1, ", "1\n"))

@@ -324,7 +324,7 @@ def test_a_world_override_out_of_range_names_its_entry_in_the_spec(tmp_path):
     from tegrasp_drake.transfer.matrix import LoadTransferSpec
     spec = tmp_path / "t.yaml"
     spec.write_text("worlds:\n  ideal: {scenario: memorizing_world}\n"
-                    "  big: {scenario: faithful_world, overrides: [grasp.grip_force=50.0, "
+                    "  big: {scenario: faithful_world, overrides: [grasp.hold_s=2.0, "
                     "grasp.grip_force=5000.0]}\ncells: [[ideal, big]]\n"
                     "sweep: {objects: [box], controllers: [memorized], grid: [[0.0, 0.0]], "
                     "attempts: 1}\n")
