@@ -52,6 +52,25 @@ def _reachable_config_classes(*roots) -> set:
     return seen
 
 
+def test_a_ranges_own_words_for_a_low_value_agree_with_its_low_end():
+    """A Range's `below` replaces the words for a value under its low end: a low end of 0
+    that is open (0 refused) is never told "zero or positive", a closed one never "positive"
+    (slip_window_s said "must be zero or positive" of the 0 it refused)."""
+    from tegrasp_drake.rig.ranges import range_of
+    classes = _reachable_config_classes(*CONFIG_ROOTS, SyntheticGraspConfig, EventMatcherConfig)
+    wrong = []
+    for cls in classes:
+        for field in dataclasses.fields(cls):
+            declared = range_of(field)
+            if not isinstance(declared, Range) or not declared.below or declared.low != 0:
+                continue
+            says_zero_is_fine = "zero or" in declared.below or "non-negative" in declared.below
+            if (declared.low_open and says_zero_is_fine) or (
+                    not declared.low_open and "must be positive" in declared.below):
+                wrong.append(f"{cls.__name__}.{field.name}: {declared.below!r}")
+    assert not wrong, wrong
+
+
 def test_no_config_class_holds_more_than_15_fields():
     """A config class nests its settings by concern rather than growing flat."""
     classes = _reachable_config_classes(*CONFIG_ROOTS, SyntheticGraspConfig, EventMatcherConfig)

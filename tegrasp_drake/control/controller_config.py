@@ -181,7 +181,7 @@ class LiftLoadConfig:
     # texture slip at a lift's 40 mm/s rings at 80 Hz, the squeeze below 10 Hz
     slip_band_hz: float = bounded(80.0, low=0.0, low_open=True, high=10_000.0, unit="Hz")
     slip_window_s: float = bounded(0.01, low=0.0, low_open=True, high=1.0, unit="s",
-                                   below="must be zero or positive [s]")
+                                   below="must be positive [s]: the slip band's window")
     slip_s: float = bounded(0.02, low=0.0, high=1.0, unit="s",
                             below="must be zero or positive [s]")
     force_factor: float = bounded(2.0, low=1.0, high=10.0, below="must be at least 1")

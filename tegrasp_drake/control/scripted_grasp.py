@@ -37,7 +37,10 @@ class GraspScriptConfig:
     # close command to lift [s]: the close (1.24 s for the 25 mm cylinder) plus 0.56 s on the
     # object, the grip's settling and half a memorized window (recording/paper_events.py checks)
     load_s: float = bounded(1.8, low=0.0, low_open=True, high=30.0, unit="s")
-    lift_height: float = bounded(0.06, low=0.0, high=0.3, unit="m")  # m
+    # a lift of 0 is no lift: Lift's remaining share (the state machine) divides by it, and
+    # the Hold it leads to would test an object standing on the table
+    lift_height: float = bounded(0.06, low=0.0, low_open=True, high=0.3, unit="m",
+                                 below="must be positive [m]: the Lift raises the object")
     lift_s: float = bounded(1.5, low=0.0, low_open=True, high=30.0, unit="s")
     hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",
                             why="the paper holds 3 s; a minute is the longest hold test")
