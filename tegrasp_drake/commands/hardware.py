@@ -266,11 +266,26 @@ def run(args) -> int:
         if problem:
             where = "" if taken == pathlib.Path(log) else f": {shorten(str(taken))}"
             raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}{where} {problem}")
-    pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
-    # One run at a time per --log: a second one (with --overwrite or not) would replace the
-    # first one's log and result under it.
+    # The folders --log needs are made for the run and, if it ends refused or failed before
+    # it wrote anything, removed again (a refused run leaves nothing).
+    from tegrasp_drake.rig.files import (absent_folders, made_folders_removed_if_empty,
+                                         remove_made_folders_if_empty)
+    made = absent_folders(pathlib.Path(log).parent)
+    with made_folders_removed_if_empty(made):
+        code = _run_in_log_folder(args, scenario, config, events, corrective, log,
+                                  result_path)
+    if code:
+        remove_made_folders_if_empty(made)  # a run refused by its code wrote nothing there
+    return code
+
+
+def _run_in_log_folder(args, scenario, config, events, corrective, log, result_path) -> int:
+    """The run, its --log's folder made, holding the log (held_file): one run at a time."""
     from tegrasp_drake.rig.files import FileHeldError, held_file
     with contextlib.ExitStack() as stack:
+        pathlib.Path(log).parent.mkdir(parents=True, exist_ok=True)
+        # One run at a time per --log: a second one (with --overwrite or not) would replace
+        # the first one's log and result under it.
         try:
             stack.enter_context(held_file(log))
         except FileHeldError:

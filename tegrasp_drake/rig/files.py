@@ -432,12 +432,18 @@ def made_folders_removed_if_empty(made):
     try:
         yield
     except BaseException:
-        for path in made:
-            try:
-                path.rmdir()
-            except OSError:  # holds something (or was never made): it, and its parents, stay
-                break
+        remove_made_folders_if_empty(made)
         raise
+
+
+def remove_made_folders_if_empty(made) -> None:
+    """Removes each of the folders `made` (absent_folders, deepest first) that is still
+    empty, stopping at the first that is not: what a run that wrote nothing made."""
+    for path in made:
+        try:
+            path.rmdir()
+        except OSError:  # holds something (or was never made): it, and its parents, stay
+            break
 
 
 def claim_folder(path) -> bool:

@@ -437,3 +437,20 @@ def test_a_serial_device_not_plugged_in_names_its_config_field(absent, tmp_path,
                         "--write-config FILE` writes a config of emulated devices to try "
                         "without hardware"), text
     assert "Errno" not in text, text
+
+
+@pytest.mark.parametrize("existing", ["", "runs"])
+def test_a_refused_hardware_run_leaves_no_folder_it_made_for_its_log(existing, tmp_path, capfd):
+    """--log deep/a/b/run.lcmlog refused (a device not plugged in): the folders made for the
+    log are removed again; one that was there before stays."""
+    config = tmp_path / "hw.yaml"
+    config.write_text("gripper: {port: /dev/ttyNOPE}\ntactile: {port: /dev/ttyNOPE2}\n")
+    base = tmp_path / "out"
+    if existing:
+        (base / existing).mkdir(parents=True)
+    log = base / (existing or "deep") / "a" / "b" / "run.lcmlog"
+    code, text = run_cli(["hardware", "--config", str(config), "--controller", "heuristic",
+                          "--log", str(log), "--duration", "0.5"], capfd)
+    assert code == 1 and "field 'gripper.port' '/dev/ttyNOPE'" in text, text
+    left = sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*") if p.is_dir())
+    assert left == (["out", "out/runs"] if existing else []), left
