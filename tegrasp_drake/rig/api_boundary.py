@@ -416,7 +416,7 @@ def _typed_fields(cls) -> tuple[list, object]:
 
 
 def check_field_types(instance) -> None:
-    """TypeError naming the first field of a public dataclass `instance` not of its type: a
+    """ConfigTypeError naming the first field of a public dataclass `instance` not of its type: a
     scalar field (str, int, float, bool), a collection given as one string or as an array
     (numpy's), then nested configs, enums, arrays and items (typed_yaml.check_instance)."""
     cls = type(instance)
@@ -425,12 +425,13 @@ def check_field_types(instance) -> None:
     for name in collections_:
         value = getattr(instance, name)
         if isinstance(value, _TEXT):
-            raise TypeError(f"{cls.__name__}: field '{name}' must be a collection "
+            from tegrasp_drake.rig.typed_yaml import ConfigTypeError
+            raise ConfigTypeError(f"{cls.__name__}: field '{name}' must be a collection "
                             f"(not a single string), got {type(value).__name__} "
                             f"{shown(value)}; e.g. {name}=[{shown(value)}]")
         if hasattr(value, "__array__") and not isinstance(value, (list, tuple)):
-            from tegrasp_drake.rig.typed_yaml import array_for_list_words
-            raise TypeError(f"{cls.__name__}: field '{name}' "
+            from tegrasp_drake.rig.typed_yaml import ConfigTypeError, array_for_list_words
+            raise ConfigTypeError(f"{cls.__name__}: field '{name}' "
                             f"{array_for_list_words(value, name)}")
     from tegrasp_drake.rig.typed_yaml import check_instance
     check_instance(instance, cls.__name__)  # nested configs, enums, arrays, items
@@ -522,12 +523,14 @@ def _scalar_fields(cls, hints: dict) -> dict:
 
 
 def _check_scalar_fields(instance, scalar: dict, source: str) -> None:
-    """TypeError naming the first of the `scalar` fields whose value is not of its type (a
-    NumPy scalar counts as the Python one it holds: np.bool_ as bool)."""
+    """ConfigTypeError (a ConfigError and a TypeError, as every config field's wrong type)
+    naming the first of the `scalar` fields whose value is not of its type (a NumPy scalar
+    counts as the Python one it holds: np.bool_ as bool)."""
     for name, hint in scalar.items():
         value = getattr(instance, name)
         if not _matches(python_scalar(value), hint):
-            raise TypeError(f"{source}: field '{name}' must be {_describe_hint(hint)}, "
+            from tegrasp_drake.rig.typed_yaml import ConfigTypeError
+            raise ConfigTypeError(f"{source}: field '{name}' must be {_describe_hint(hint)}, "
                             f"got {type(value).__name__} {shown(value)}")
 
 

@@ -493,3 +493,15 @@ def test_a_numpy_number_put_into_a_list_field_in_place_is_kept_as_the_number_it_
     T.grasp_plan(scenario)
     assert type(values[index]) is float and values[index] == np.float32(values[index])
     json.dumps(values)
+
+
+@pytest.mark.parametrize("build", [lambda: T.ObjectConfig(mass="heavy"),
+                                   lambda: T.Scenario(random_seed="x"),
+                                   lambda: T.ObjectConfig(size="abc"),
+                                   lambda: T.ObjectConfig(size=None)])
+def test_a_config_fields_wrong_type_is_one_error_type(build):
+    """Every wrong field type of a public config is a ConfigError (as a bad value is) and a
+    TypeError: `except ConfigError` catches them all, not only some."""
+    with pytest.raises(ConfigError) as refused:
+        build()
+    assert isinstance(refused.value, TypeError), refused.value
