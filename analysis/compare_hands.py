@@ -115,6 +115,9 @@ def main(argv=None) -> int:
     parser.add_input("prismatic", type=pathlib.Path, nargs="+", what="prismatic folder",
                      advice=SWEEP_RESULTS_ADVICE)
     args = parser.parse_args(argv)
+    linkage, *prismatic_runs = load_folders(
+        [args.linkage, *args.prismatic], names=["linkage folder"]
+        + ["prismatic folder"] * len(args.prismatic))
     seen = {args.linkage.resolve(): "linkage folder"}
     for folder in args.prismatic:  # one hand's trials read as the other's pair with themselves
         if folder.resolve() in seen:
@@ -122,9 +125,6 @@ def main(argv=None) -> int:
                           f"{seen[folder.resolve()]} given before it; give each hand's own "
                           "`tegrasp sweep --out` folder, each once")
         seen[folder.resolve()] = "prismatic folder"
-    linkage, *prismatic_runs = load_folders(
-        [args.linkage, *args.prismatic], names=["linkage folder"]
-        + ["prismatic folder"] * len(args.prismatic))
     prismatic = {}
     for records in prismatic_runs:
         prismatic.update(records)

@@ -21,8 +21,11 @@ def results(tmp_path):
 
 
 def arguments(script, out, results):
+    other = results.with_name("other_hand")  # compare_hands refuses one folder for both hands
+    if script == "compare_hands" and not other.exists():
+        shutil.copytree(results, other)
     return {"compare_geometry": [str(out), str(results), str(results)],
-            "compare_hands": [str(out), str(results), str(results)],
+            "compare_hands": [str(out), str(results), str(other)],
             "detection_quality": [str(out), str(results)],
             "hold_creep": [str(results), str(results), "--out", str(out)]}[script]
 
