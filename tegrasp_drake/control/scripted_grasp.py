@@ -37,10 +37,11 @@ class GraspScriptConfig:
     # close command to lift [s]: the close (1.24 s for the 25 mm cylinder) plus 0.56 s on the
     # object, the grip's settling and half a memorized window (recording/paper_events.py checks)
     load_s: float = bounded(1.8, low=0.0, low_open=True, high=30.0, unit="s")
-    # a lift of 0 is no lift: Lift's remaining share (the state machine) divides by it, and
-    # the Hold it leads to would test an object standing on the table
-    lift_height: float = bounded(0.06, low=0.0, low_open=True, high=0.3, unit="m",
-                                 below="must be positive [m]: the Lift raises the object")
+    # a trial judges the object held only once it is 2 cm above where it rested
+    # (runs/grasp_outcome.py, LIFTED_HEIGHT_M): a lower lift could never be held (and a lift
+    # of 0 stalls Lift, whose remaining share divides by it)
+    lift_height: float = bounded(0.06, low=0.02, high=0.3, unit="m",
+                                 why="a trial counts the object held 2 cm above its rest")
     lift_s: float = bounded(1.5, low=0.0, low_open=True, high=30.0, unit="s")
     hold_s: float = bounded(3.0, low=0.0, high=60.0, unit="s",
                             why="the paper holds 3 s; a minute is the longest hold test")

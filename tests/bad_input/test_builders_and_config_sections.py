@@ -44,7 +44,8 @@ DRAKE_SECTION_PROBES = [  # (--set assignment, words the one error line holds)
 
 RELATED_FIELD_PROBES = [
     # a lift of 0 ran to the time limit in Lift (its share of the lift divides by it)
-    ("grasp.lift_height=0", "field 'grasp.lift_height' must be positive [m]: the Lift raises"),
+    ("grasp.lift_height=0", "field 'grasp.lift_height' must lie in [0.02, 0.3] m (a trial "
+                             "counts the object held 2 cm above its rest)"),
     ("controller.lift_load.slip_band_hz=900.0", "field 'controller.lift_load.slip_band_hz' must lie below half"),
     ("grasp.grasp_height=0.5", "field 'grasp.grasp_height' must lie within the object's height"),
     ("object.mass=~", "field 'object.mass' is null"),
