@@ -259,3 +259,21 @@ def test_a_named_figure_is_replaced_with_overwrite_and_the_folders_own_without(s
     for _ in range(2):  # RESULTS/success_maps.png, the sweep folder's own figure
         done = run_script("make_success_maps", [str(sweep)], tmp_path)
         assert done.returncode == 0, done.stderr
+
+
+def test_a_reference_controller_the_results_do_not_hold_is_refused(sweep, tmp_path):
+    """A paired table against a controller no trial ran would be empty: refused, naming the
+    controllers the folders hold."""
+    out = tmp_path / "quality.md"
+    done = run_script("detection_quality", [str(out), str(sweep), "--reference", "taxel_aware"],
+                      tmp_path)
+    lines = done.stderr.strip().splitlines()
+    assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
+    assert len(lines) == 1, lines
+    assert lines[0].startswith("detection_quality: error: --reference taxel_aware: the results "
+                               "hold no trial of that controller (they hold "), lines
+    assert not out.exists()
+    done = run_script("detection_quality", [str(out), str(sweep), "--reference", "nonesuch"],
+                      tmp_path)
+    assert done.returncode != 0 and "nonesuch" in done.stderr and "Traceback" not in done.stderr
+    assert not out.exists()
