@@ -164,11 +164,26 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     needs them. ra_noise_std_mps2 [m/s^2 rms] and tactile raise the RA and SA thresholds to
     their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone."""
     entry = controller_entry(controller)
+    _refuse_unread_events(controller, entry, events, corrective_events)
     return entry.load("add_systems")(
         builder, entry=entry, controller=controller, plan=plan,
         station=station, arm=arm, sample_rates_hz=sample_rates_hz, events=events,
         corrective_events=corrective_events, ra_noise_std_mps2=ra_noise_std_mps2,
         tactile=tactile)
+
+
+def _refuse_unread_events(controller, entry, events, corrective_events) -> None:
+    """ValueError when events are given to a controller that would not read them: they would
+    be dropped without a word, and the run would not be the one the caller meant."""
+    if events is not None and not entry.event_triggered:
+        raise ValueError(f"AddGraspController: events: the {controller.name} controller reads "
+                         "no memorized events; leave events out, or choose an event-triggered "
+                         "controller")
+    if corrective_events is not None and not controller.memorized_corrective.events:
+        raise ValueError("AddGraspController: corrective_events: the controller's "
+                         "memorized_corrective.events names none, so none would be read; leave "
+                         "corrective_events out, or name the transitions in "
+                         "memorized_corrective.events")
 
 
 def _add_arm_controller(builder, *, station: System, arm: ArmDriverConfig):

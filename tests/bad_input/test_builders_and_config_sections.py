@@ -292,3 +292,17 @@ def test_make_grasp_station_refuses_a_capacitive_setting_outside_its_choices(fie
     with pytest.raises(ConfigError, match=f"field 'capacitive.{field}' must be one of "
                                           f"{allowed}"):
         MakeGraspStation(**arguments)
+
+
+@pytest.mark.parametrize("controller", ["open_loop", "heuristic"])
+def test_events_given_to_a_controller_that_reads_none_are_refused(controller):
+    """Memorized events handed to a controller that never reads them would be dropped without a
+    word: the diagram built would not be the run the caller meant."""
+    events = T.load_controller_events(LoadScenario())
+    scenario = LoadScenario(controller=controller)
+    with pytest.raises(ValueError, match=rf"^AddGraspController: events: the {controller} "
+                                         "controller reads no memorized events; leave events"):
+        T.MakeGraspDiagram(scenario, events=events, log=False)
+    with pytest.raises(ValueError, match=r"^AddGraspController: corrective_events: the "
+                                         "controller's memorized_corrective.events names none"):
+        T.MakeGraspDiagram(scenario, corrective_events=events, log=False)
