@@ -224,14 +224,18 @@ def synthetic_trial_log(trial) -> TrialLog:
     t_slow = np.array([0.0, trial.t_ra[-1]])
     taxels = zeros(trial.t_sa, 2 * TAXELS_PER_PAD)
     taxels[:, 0], taxels[:, TAXELS_PER_PAD] = trial.sa[:, 0], trial.sa[:, 1]
-    sa_at_ra = trial.sa[np.searchsorted(trial.t_sa, trial.t_ra, side="right") - 1]
+    # held as the loggers record it: from the first taxel sample at or after each RA time
+    held = np.searchsorted(trial.t_sa, trial.t_ra - 1e-9, side="left")
+    sa_at_ra = trial.sa[np.minimum(held, len(trial.t_sa) - 1)]
+    pad_acceleration = zeros(trial.t_ra, 6)  # each film's RA along the pad's x
+    pad_acceleration[:, 0], pad_acceleration[:, 3] = trial.ra[:, 0], trial.ra[:, 1]
     object_state = zeros(t_slow, 13)
     object_state[:, 0] = 1.0  # the identity orientation, a unit quaternion
     arm_q = zeros(t_slow, 6)
     arm_q[:, 1:3] = [3.0, 1.0]  # joints 2 and 3 within the JACO2's limits
     return TrialLog(t_sa=trial.t_sa, taxels=taxels, true_taxels=taxels, t_ra=trial.t_ra,
                     channels=np.hstack([sa_at_ra, trial.ra]),
-                    pad_acceleration=zeros(trial.t_ra, 6), t_slow=t_slow,
+                    pad_acceleration=pad_acceleration, t_slow=t_slow,
                     arm_q=arm_q, arm_q_desired=arm_q,
                     gripper_command=zeros(t_slow, 3), gripper_status=zeros(t_slow, 8),
                     phase=np.zeros(2), object_state=object_state,

@@ -22,6 +22,7 @@ import numpy as np
 
 from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, file_problem, load_json,
                                      one_line, temporary_sibling)
+from tegrasp_drake.scenario.logged_channels import logged_channels_problem
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import number_text
@@ -540,7 +541,8 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
     two finite, increasing times sampled at one period (STEP_TOLERANCE), the bases covering
     one run at their loggers' periods (time_bases_problem), one row per time,
     finite signals within their physical ranges (out_of_range_signals, and sensor_range_problem
-    for the sensors of `scenario`, the log's Scenario, or of any scenario when None). Every
+    for the sensors of `scenario`, the log's Scenario, or of any scenario when None), the
+    channels Eq. 1-2 of the taxels and pad accelerations (logged_channels_problem). Every
     reader applies it."""
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
@@ -567,7 +569,8 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
                         f"'{time_name}' need {expected}")
     return (time_bases_problem(arrays, scenario)
             or nonfinite_signals(arrays) or out_of_range_signals(arrays)
-            or sensor_range_problem(arrays, scenario) or object_path_problem(arrays, scenario)
+            or sensor_range_problem(arrays, scenario) or logged_channels_problem(arrays)
+            or object_path_problem(arrays, scenario)
             or object_orientation_problem(arrays) or joint_angle_problem(arrays))
 
 
@@ -830,22 +833,23 @@ def sensor_bounds(scenario, duration_s: float) -> SensorBounds:
 
 def _sensor_limits(bounds: SensorBounds, duration_s: float) -> list[tuple]:
     """(array, column, its name or "", low, high, unit, why) of each column sensor_range_problem
-    checks: the taxels, Eq. 1's SA (a pad's 12 taxels' sum) and Eq. 2's RA (the size of its
-    3 axes' vector), the pads' accelerations, the object's position (object_state 4 to 6)."""
+    checks: the taxels and the pads' accelerations, then Eq. 1's SA (a pad's 12 taxels' sum)
+    and Eq. 2's RA (the size of its 3 axes' vector) computed from them (a sample out of range
+    is named before the channel it makes so), the object's position (object_state 4 to 6)."""
     whose, (low, high), unit = bounds.whose, bounds.taxels, bounds.taxel_unit
     pad = bounds.pad_acceleration
     taxel_why = f"what {whose} taxels can read (their model, noise to 10 sigma)"
     pad_why = f"what {whose} RA transducer can read (its full scale)"
     rows = [("taxels", column, "", low, high, unit, taxel_why)
             for column in range(len(CHANNEL_NAMES) // 2 * TAXELS_PER_PAD)]
+    rows += [("pad_acceleration", column, "", -pad, pad, "m/s^2", pad_why)
+             for column in range(len(RA_CHANNELS) * PAD_ACCELERATION_AXES)]
     rows += [("channels", column, CHANNEL_NAMES[column], TAXELS_PER_PAD * low,
               TAXELS_PER_PAD * high, unit, f"{TAXELS_PER_PAD} times {taxel_why}")
              for column in SA_CHANNELS]
     rows += [("channels", column, CHANNEL_NAMES[column], 0.0,
               math.sqrt(PAD_ACCELERATION_AXES) * pad, "m/s^2",
               f"the size of {PAD_ACCELERATION_AXES} axes' {pad_why}") for column in RA_CHANNELS]
-    rows += [("pad_acceleration", column, "", -pad, pad, "m/s^2", pad_why)
-             for column in range(len(RA_CHANNELS) * PAD_ACCELERATION_AXES)]
     object_why = (f"where {whose} object can be by {number_text(duration_s)} s (on the table at "
                   "the start, moving no faster than the hand or a hit drives it, or falling)")
     rows += [("object_state", 4 + k, axis, *bounds.object_xyz[k], "m", object_why)

@@ -111,6 +111,11 @@ def trial_log(path, **changes):
         arrays[name][:, 1:3] = [3.0, 1.0]
     assert set(arrays) == set(ARRAY_FIELDS)
     arrays.update(changes)
+    if "channels" not in changes:  # Eq. 1-2 of the taxels and accelerations, as logged
+        try:
+            arrays["channels"] = channels_of(arrays)
+        except (IndexError, ValueError, TypeError):  # a probe's malformed array: refused anyway
+            pass
     # every trial log names its controller (trial_log_file.REQUIRED_META_FIELDS): the
     # default scenario's
     meta = json.dumps({"format_version": FORMAT_VERSION, "controller": "memorized"})
@@ -127,6 +132,20 @@ def memorized_events(object_name="mine", sa_rate_hz=108.0, seed=0):
     return [MemorizedEvent(object_name=object_name, transition=transition,
                            sa=window(sa_rate_hz), ra=window(1000.0), sa_rate_hz=sa_rate_hz,
                            ra_rate_hz=1000.0) for transition in REQUIRED_TRANSITIONS]
+
+
+def channels_of(arrays) -> np.ndarray:
+    """A log's channels as its loggers record them: each pad's taxel sum (Eq. 1) held from the
+    first taxel sample at or after each RA time (past the last one: the last), and the size of
+    each pad's acceleration (Eq. 2)."""
+    t_sa, t_ra = np.asarray(arrays["t_sa"]), np.asarray(arrays["t_ra"])
+    rows = np.minimum(np.searchsorted(t_sa, t_ra - 1e-9, side="left"), len(t_sa) - 1)
+    taxels, axes = np.asarray(arrays["taxels"]), np.asarray(arrays["pad_acceleration"])
+    scale = np.maximum(np.abs(axes).max(axis=1, initial=0.0), 1e-300)[:, None]
+    with np.errstate(over="ignore"):  # a probe's 1e300 (its range refuses it first)
+        return np.column_stack([taxels[rows, :12].sum(axis=1), taxels[rows, 12:].sum(axis=1),
+                                scale[:, 0] * np.linalg.norm(axes[:, :3] / scale, axis=1),
+                                scale[:, 0] * np.linalg.norm(axes[:, 3:] / scale, axis=1)])
 
 
 def trial_log_with(path, meta=None, **arrays):

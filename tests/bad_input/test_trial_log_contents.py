@@ -409,3 +409,45 @@ def test_a_trial_log_whose_scenario_names_the_real_devices_is_refused(tmp_path):
     log_refusal(trial_log_with(tmp_path / "trial.npz", {"scenario": hardware}),
                 "meta 'scenario' names the real devices (station: !HardwareStationConfig), but "
                 "a trial log is written by a simulated trial (tegrasp trial)")
+
+
+def _varying_log(tmp_path, name="trial.npz", **changes):
+    """trial_log_with's log whose taxels and pad accelerations change from sample to sample
+    (its channels computed from them, as the loggers record them)."""
+    rng = np.random.default_rng(7)
+    taxels = rng.uniform(0.0, 2.0, (11, 24))
+    accelerations = rng.uniform(-5.0, 5.0, (101, 6))
+    arrays = {"taxels": taxels, "true_taxels": taxels, "pad_acceleration": accelerations}
+    arrays.update(changes)
+    return trial_log_with(tmp_path / name, {"scenario": FORCE_TAXELS}, **arrays)
+
+
+def test_a_trial_log_whose_channels_are_eq_1_and_2_of_its_samples_is_read(tmp_path):
+    log = load_trial_log(_varying_log(tmp_path))
+    assert log.channels[20, 0] == pytest.approx(log.taxels[3, :12].sum())
+
+
+# Rule: the logged channels are Eq. 1 of the taxels (held between taxel samples) and Eq. 2 of
+# the pad accelerations: taxels reversed in time, pads swapped or a channel edited no longer
+# agree with them, and the log is refused rather than drawn as one trial.
+@pytest.mark.parametrize("change, expected", [
+    ("taxels reversed", "'channels' sample 0 (t = 0 s) column 0 (sa_left) holds"),
+    ("pads swapped", "column 2 (ra_left) holds"),
+    ("sa edited", "'channels' sample 40 (t = 0.04 s) column 1 (sa_right) holds 3, but the "
+                  "pad's 12 taxels at sample 5 sum to"),
+], ids=["reversed", "swapped", "edited"])
+def test_channels_that_disagree_with_the_taxels_or_accelerations_are_refused(tmp_path, change,
+                                                                            expected):
+    with np.load(_varying_log(tmp_path, "whole.npz")) as whole:
+        taxels, axes, channels = (whole[n].copy() for n in ("taxels", "pad_acceleration",
+                                                           "channels"))
+    if change == "taxels reversed":
+        spoilt = {"taxels": taxels[::-1], "true_taxels": taxels[::-1], "channels": channels}
+    elif change == "pads swapped":
+        spoilt = {"pad_acceleration": axes[:, [3, 4, 5, 0, 1, 2]], "channels": channels}
+    else:
+        channels[40, 1] = 3.0
+        spoilt = {"channels": channels}
+    log_refusal(_varying_log(tmp_path, **spoilt), expected)
+    log_refusal(_varying_log(tmp_path, **spoilt), "the taxels or the channels were changed"
+                if change != "pads swapped" else "the accelerations or the channels were changed")

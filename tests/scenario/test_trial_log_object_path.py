@@ -68,7 +68,7 @@ def _long_trial_log(path, object_state):
         path, {"scenario": scenario_to_yaml(LoadScenario())},
         t_sa=np.arange(n_sa) / 108.0, taxels=np.ones((n_sa, 24)),
         true_taxels=np.ones((n_sa, 24)), t_ra=np.arange(n_ra) / 1000.0,
-        channels=np.ones((n_ra, 4)), pad_acceleration=np.zeros((n_ra, 6)),
+        pad_acceleration=np.zeros((n_ra, 6)),
         t_slow=np.arange(n_slow) / 100.0, object_state=object_state, **slow)
 
 
