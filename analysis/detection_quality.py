@@ -25,8 +25,9 @@ def main(argv=None) -> int:
     parser.add_input("results", type=pathlib.Path, nargs="+", what="results folder",
                      advice=SWEEP_RESULTS_ADVICE,
                      help="`tegrasp sweep` results folders (their records, trials/*.json)")
-    parser.add_argument("--reference", default="open_loop", choices=CONTROLLER_NAMES,
-                        help="the controller the others are paired against (default: open_loop)")
+    parser.add_argument("--reference", choices=CONTROLLER_NAMES,
+                        help="the controller the others are paired against (default: open_loop "
+                             "when the results hold it; else no paired table)")
     parser.add_argument("--title", default="Detection quality and paired comparison",
                         help="the report's heading")
     args = parser.parse_args(argv)
@@ -39,7 +40,9 @@ def main(argv=None) -> int:
         records.update(loaded.records)
     controllers = [c for c in CONTROLLER_NAMES
                    if any(r["trial"]["controller"] == c for r in records.values())]
-    if args.reference not in controllers:
+    if args.reference is None:
+        args.reference = "open_loop" if "open_loop" in controllers else None
+    elif args.reference not in controllers:
         raise SystemExit(f"detection_quality: --reference {args.reference}: the results hold no "
                          f"trial of that controller (they hold {', '.join(controllers)}); give "
                          f"one of those, or add a folder swept with it")

@@ -10,6 +10,7 @@ object_placement.py: the object's pose from its marker, offset and yaw.
 moved_keys.py: settings' old paths, refused in input and migrated in stored records.
 rule_reach.py: which taxel_aware rules one pad alone can fire for an object (the docs' table).
 trial_log_writer.py, trial_log_file.py: the trial's loggers and its TrialLog .npz file.
+logged_channels.py: a log's channels checked against the taxels and accelerations (Eq. 1-2).
 trial_result.py: TrialResult, a trial's outcome and its JSON form (read back with the log)."""
 
 from tegrasp_drake.scenario.grasp_diagram import (AddScenarioController, GraspDiagram,

@@ -177,7 +177,7 @@ def paired_comparison(records, first: str, second: str,
                             exact_mcnemar_p_value(a, b))
 
 
-def report_markdown(records, controllers, reference: str, title: str) -> str:
+def report_markdown(records, controllers, reference: str | None, title: str) -> str:
     """The detection-quality and paired-comparison report of a sweep, as Markdown."""
     def ms(value):
         return "–" if value is None else f"{1000 * value:.0f} ms"
@@ -219,6 +219,11 @@ def report_markdown(records, controllers, reference: str, title: str) -> str:
     for controller in controllers:
         text = ", ".join(f"{a} {n}" for a, n in sorted(counts.get(controller, {}).items()))
         lines.append(f"| {controller} | {text or 'none'} |")
+    if reference is None:  # no controller to pair against: said, not an empty table
+        return "\n".join(lines + [
+            "\n## Paired success (McNemar, exact)\n",
+            "No open_loop trials in these results to pair against; give --reference with a "
+            "controller they hold."]) + "\n"
     lines += [f"\n## Paired success against {reference} (McNemar, exact)\n",
               "| controller | marker | pairs | its rate | reference rate | only it | "
               "only reference | p |", "|---|---|---|---|---|---|---|---|"]
