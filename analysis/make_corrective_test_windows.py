@@ -19,6 +19,8 @@ import numpy as np
 from tegrasp_drake.commands.script_output import (CORRECTIVE_LOGS_ADVICE, ENSEMBLE_LOGS_ADVICE,
                                                   run_script, script_parser)
 from tegrasp_drake.events import tactile_trial_from_log
+from tegrasp_drake.rig.files import temporary_sibling
+from tegrasp_drake.rig.npz_headers import NPZ_START
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 sys.path.insert(0, str(pathlib.Path(__file__).parent))
@@ -57,7 +59,8 @@ def main(argv=None) -> int:
     normal = load_trial_log(ensemble / "box" / "run6.npz")
     cut(normal, "normal_lift", LIFT_START_S - 0.6, LIFT_END_S, arrays)
     cut(normal, "normal_hold", LIFT_END_S, HOLD_END_S, arrays)
-    np.savez_compressed(OUT, **arrays)
+    with (temporary_sibling(OUT, start=NPZ_START) as temporary, open(temporary, "wb") as f):
+        np.savez_compressed(f, **arrays)  # whole or not at all: the tests read it
     print(f"wrote {OUT} ({OUT.stat().st_size} bytes)")
     return 0
 

@@ -26,9 +26,10 @@ from tegrasp_drake.hardware.myrio.tactile_frame import FRAME_PERIOD_US
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
-from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance, load_typed,
-                                          loaded_with_overrides, parse_yaml, read_yaml_text,
-                                          require_fields, require_mapping, top_level_tag)
+from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance,
+                                          require_own_tag, load_typed, loaded_with_overrides,
+                                          parse_yaml, read_yaml_text, require_fields,
+                                          require_mapping, top_level_tag)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.rig.echo import shorten, shown
 
@@ -462,6 +463,7 @@ def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                    "one)")
     require_mapping(data, filename, "the hardware config", "HardwareStationConfig fields "
                     "(arm, gripper, tactile, watchdog, ...)")
+    require_own_tag(text, HardwareStationConfig, filename)
     data.pop("_tag", None)
     for assignment in overrides:
         apply_override(data, assignment, "--config-set", "tactile.port")

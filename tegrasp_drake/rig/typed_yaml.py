@@ -732,6 +732,16 @@ def require(condition: bool, source: str, path: str, words: str, value) -> None:
         raise ConfigError(f"{source}: field '{path}' {words}, got {shown(value)}")
 
 
+def require_own_tag(text: str, cls: type, source) -> None:
+    """ConfigError naming `source` when the YAML `text`'s top-level mapping carries a tag other
+    than `cls`'s own (`!HardwareStationConfig`): parse_yaml drops that tag, so a file of
+    another kind, or a misspelt tag, would otherwise be read without a word."""
+    tag = top_level_tag(text)
+    if tag is not None and tag != f"!{cls.__name__}":
+        raise ConfigError(f"{source}: the file is tagged {shorten(tag)}, but it is read as a "
+                          f"{cls.__name__}; tag it !{cls.__name__} or remove the tag")
+
+
 def _refuse_tag(value, path: str, source: str) -> None:
     """ConfigError if `value` is a mapping a YAML tag marks (core_schema_yaml adds its
     `_tag`) where no tag selects a variant (a Union of config classes consumes its own)."""

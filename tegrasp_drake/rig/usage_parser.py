@@ -75,7 +75,9 @@ class _StoreOnce(argparse._StoreAction):
     `--out a --out b`, neither silently wins (a YAML file's repeated key is refused alike)."""
 
     def __call__(self, parser, namespace, values, option_string=None):
-        seen = parser.__dict__.setdefault("_given_options", {})  # a plain parser's too
+        # UsageParser empties the record at each parse; a parser of another class that
+        # registered this action gets one here, kept across its parses
+        seen = parser.__dict__.setdefault("_given_options", {})
         if self.dest in seen and seen[self.dest][1] != values:
             from tegrasp_drake.rig.echo import shown
             first, value = seen[self.dest]

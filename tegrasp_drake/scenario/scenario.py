@@ -6,6 +6,7 @@ way. A bad file, field or value raises ConfigError.
 """
 
 import dataclasses
+import difflib
 import math
 import pathlib
 import re
@@ -586,6 +587,9 @@ def _refuse_other_controller_name(data: dict, overrides, controller: str | None)
 
 
 _SCENARIO_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_.-]*")
+# The most scenario names a refusal lists in full (the built-in file holds 11); a longer
+# file's others are counted.
+_LISTED_SCENARIOS = 30
 
 
 def _no_scenario_named(name: str, document: dict | None) -> str:
@@ -595,7 +599,12 @@ def _no_scenario_named(name: str, document: dict | None) -> str:
     names = [str(key) for key, value in (document or {}).items()
              if isinstance(value, dict) and _SCENARIO_NAME.fullmatch(str(key))]
     if names:
-        return f"no scenario named '{name}' (scenarios: {shorten(', '.join(names))})"
+        listed = ", ".join(shorten(n) for n in names[:_LISTED_SCENARIOS])
+        if len(names) > _LISTED_SCENARIOS:
+            listed += f", and {len(names) - _LISTED_SCENARIOS} more"
+        close = difflib.get_close_matches(str(name), names, n=1)
+        hint = f"; did you mean '{shorten(close[0])}'?" if close else ""
+        return f"no scenario named '{shorten(str(name))}' (scenarios: {listed}){hint}"
     keys = len(document or {})
     return (f"no scenario named '{name}', and no scenario at all ({keys} top-level key(s), "
             "none a name mapped to scenario fields): give a scenario file")

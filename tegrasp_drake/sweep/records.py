@@ -384,10 +384,14 @@ def record_result(record: dict):
     one (an error); ValueError naming the record's file and the field for one that is not."""
     from tegrasp_drake.scenario.trial_result import TrialResult
     if not isinstance(record, dict) or "result" not in record:
-        keys = shorten(", ".join(map(str, record))) if isinstance(record, dict) else type(
-            record).__name__
+        if not isinstance(record, dict):
+            given = f"a {type(record).__name__}"
+        elif record:
+            given = "the keys " + shorten(", ".join(map(str, record)))
+        else:
+            given = "an empty dict"
         raise ValueError(f"record_result: argument 'record' is not a sweep record (it has no "
-                         f"'result'; got {keys}); give a record of load_records(FOLDER)")
+                         f"'result'; got {given}); give a record of load_records(FOLDER)")
     result = record["result"]
     if result is None:
         return None

@@ -454,3 +454,20 @@ def test_a_refused_hardware_run_leaves_no_folder_it_made_for_its_log(existing, t
     assert code == 1 and "field 'gripper.port' '/dev/ttyNOPE'" in text, text
     left = sorted(str(p.relative_to(tmp_path)) for p in tmp_path.rglob("*") if p.is_dir())
     assert left == (["out", "out/runs"] if existing else []), left
+
+
+# Rule: a file's top-level tag is its class's own or none: another (a typo, a config of another
+# kind) is refused, not dropped without a word.
+def test_a_hardware_config_or_calibration_tagged_as_another_class_is_refused(tmp_path):
+    path = tmp_path / "hw.yaml"
+    path.write_text("!SweepSpec\narm: {lcm_url: 'udpm://239.255.76.67:7667?ttl=0'}\n")
+    refusal(lambda: LoadHardwareConfig(path), f"{path}: the file is tagged !SweepSpec, but it "
+            "is read as a HardwareStationConfig; tag it !HardwareStationConfig or remove")
+    path.write_text("!HardwareStationConfig\narm: {lcm_url: 'udpm://239.255.76.67:7667?ttl=0'}\n")
+    assert LoadHardwareConfig(path).arm.lcm_url == "udpm://239.255.76.67:7667?ttl=0"
+    calibration = tmp_path / "pads.yaml"
+    calibration.write_text("!Calibration\nzero_samples: 100\n")
+    refusal(lambda: LoadTactileCalibration(str(calibration)), "the file is tagged !Calibration, "
+            "but it is read as a TactileCalibration")
+    calibration.write_text("!TactileCalibration\nzero_samples: 100\n")
+    assert LoadTactileCalibration(str(calibration)).zero_samples == 100

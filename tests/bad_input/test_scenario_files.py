@@ -164,7 +164,20 @@ def test_a_misspelt_scenario_name_lists_the_files_scenarios(tmp_path, capfd):
     path.write_text("mine: {}\ntheirs: {object: {name: box}}\n")
     code, text = run_cli(["trial", "--scenario", str(path), "--scenario-name", "mnie",
                           "--out", str(tmp_path / "o")], capfd)
-    assert_one_line_error(code, text, "no scenario named 'mnie' (scenarios: mine, theirs)")
+    assert_one_line_error(code, text, "no scenario named 'mnie' (scenarios: mine, theirs); "
+                                      "did you mean 'mine'?")
+
+
+def test_a_file_of_many_scenarios_lists_them_whole_up_to_thirty(tmp_path, capfd):
+    """The built-in file's eleven names are listed whole, not cut mid-name; a file of more
+    than thirty counts the rest."""
+    code, text = run_cli(["trial", "--scenario-name", "nonesuch"], capfd)
+    assert_one_line_error(code, text, "sweep_grade)")
+    path = tmp_path / "many.yaml"
+    path.write_text("".join(f"scene_{k}: {{}}\n" for k in range(35)))
+    code, text = run_cli(["trial", "--scenario", str(path), "--scenario-name", "nonesuch"],
+                         capfd)
+    assert_one_line_error(code, text, "scene_29, and 5 more)")
 
 
 # Rule: every configuration file the package reads is refused without a field (empty,

@@ -53,8 +53,11 @@ def test_a_folder_in_place_of_a_sweep_record_is_refused_before_the_trial_runs(tm
 
 def test_record_result_refuses_what_is_not_a_trial_record():
     from tegrasp_drake.sweep.records import record_result
-    with pytest.raises(ValueError, match="argument 'record' is not a sweep record"):
+    with pytest.raises(ValueError, match="argument 'record' is not a sweep record .*got the "
+                                         "keys a\\)"):
         record_result({"a": 1})
+    with pytest.raises(ValueError, match="no 'result'; got an empty dict\\); give a record"):
+        record_result({})
     with pytest.raises(ValueError, match="'result' is not a trial's result"):
         record_result({"status": "ok", "result": {"a": 1}})
     assert record_result({"status": "error", "result": None}) is None

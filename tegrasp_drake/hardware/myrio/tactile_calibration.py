@@ -60,8 +60,8 @@ class TactileCalibration:
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
     """Reads a TactileCalibration from YAML; otherwise a ConfigError naming the file and field."""
-    from tegrasp_drake.rig.typed_yaml import (ConfigError, load_typed, parse_yaml,
-                                              read_yaml_text, require_known_keys,
+    from tegrasp_drake.rig.typed_yaml import (ConfigError, require_own_tag, load_typed,
+                                              parse_yaml, read_yaml_text, require_known_keys,
                                               require_mapping)
     # A field names the file, which may be any file the user can read: what is wrong with
     # one that is no calibration is said without showing its content.
@@ -79,6 +79,7 @@ def LoadTactileCalibration(filename: str) -> TactileCalibration:
                           "the defaults")
     require_mapping(data, filename, "the tactile calibration",
                     "fields (left, right, zero_samples, piezo_volts_per_count)", echo=False)
+    require_own_tag(text, TactileCalibration, filename)
     require_known_keys(data, TactileCalibration, filename, "a tactile calibration", advice)
     data.pop("_tag", None)
     calibration = load_typed(data, TactileCalibration, str(filename))
