@@ -4,6 +4,7 @@ GraspStateMachine -> Cartesian arm controller; or the open-loop script. It conne
 system with the station's port names (rig/station_interface.py), simulated or hardware."""
 
 import dataclasses
+import math
 from typing import Annotated
 
 from pydrake.systems.primitives import Multiplexer
@@ -33,6 +34,7 @@ from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
 from tegrasp_drake.control.controller_registry import (ControllerConfig, ControllerEntry,
                                                        controller_entry)
 from tegrasp_drake.rig.api_boundary import public_api, public_dataclass
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import field_range
 
 # The open-loop script's phases as the state machine's modes (for its timeline).
@@ -165,6 +167,8 @@ def AddGraspController(builder: DiagramBuilder, *, controller: ControllerConfig,
     their noise sigmas (control/noise_thresholds.py); 0 and None: the numbers alone."""
     entry = controller_entry(controller)
     _refuse_unread_events(controller, entry, events, corrective_events)
+    _refuse_other_objects_events(plan, events, corrective_events)
+    _refuse_rates_the_station_does_not_deliver(station, sample_rates_hz)
     return entry.load("add_systems")(
         builder, entry=entry, controller=controller, plan=plan,
         station=station, arm=arm, sample_rates_hz=sample_rates_hz, events=events,
@@ -184,6 +188,36 @@ def _refuse_unread_events(controller, entry, events, corrective_events) -> None:
                          "memorized_corrective.events names none, so none would be read; leave "
                          "corrective_events out, or name the transitions in "
                          "memorized_corrective.events")
+
+
+def _refuse_other_objects_events(plan, events, corrective_events) -> None:
+    """ValueError when an event was felt on an object other than the plan's: the templates
+    would be another object's (load_controller_events refuses those by name too)."""
+    if not plan.object_name:
+        return
+    for argument, given in (("events", events), ("corrective_events", corrective_events)):
+        for transition, event in (given or {}).items():
+            felt_on = getattr(event, "object_name", plan.object_name)
+            if felt_on != plan.object_name:
+                raise ValueError(
+                    f"AddGraspController: {argument}['{transition}'] was felt on "
+                    f"'{felt_on}', but the plan grasps '{plan.object_name}'; load the plan's "
+                    "object's events (load_controller_events(scenario)), or record events "
+                    "for it (`tegrasp record-events`)")
+
+
+def _refuse_rates_the_station_does_not_deliver(station, sample_rates_hz) -> None:
+    """ValueError when sample_rates_hz are not the rates the station declares its tactile
+    outputs sampled at: the windows would span other times than the events' 0.5 s."""
+    delivered = ports.declared_sample_rates(station)
+    if delivered is None or all(math.isclose(float(given), rate, rel_tol=1e-9)
+                                for given, rate in zip(sample_rates_hz, delivered)):
+        return
+    raise ValueError(
+        f"AddGraspController: sample_rates_hz ({number_text(sample_rates_hz[0])}, "
+        f"{number_text(sample_rates_hz[1])}) Hz: the station samples SA at "
+        f"{number_text(delivered[0])} Hz and RA at {number_text(delivered[1])} Hz; give its "
+        "rates (sample_rates_hz(scenario) of the scenario the station was made from)")
 
 
 def _add_arm_controller(builder, *, station: System, arm: ArmDriverConfig):
@@ -257,7 +291,8 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
     builder.Connect(channels.GetOutputPort("channels"), machine.GetInputPort("channels"))
     builder.Connect(station.GetOutputPort(ports.GRIPPER_STATUS),
                     machine.GetInputPort(ports.GRIPPER_STATUS))
-    accelerations = builder.AddNamedSystem("pad_acceleration_mux", Multiplexer([ports.PAD_ACCELERATION_AXES] * 2))
+    accelerations = builder.AddNamedSystem(
+        "pad_acceleration_mux", Multiplexer([ports.PAD_ACCELERATION_AXES] * 2))
     for k, finger in enumerate(FINGER_NAMES):
         builder.Connect(station.GetOutputPort(ports.pad_acceleration(finger)),
                         accelerations.get_input_port(k))

@@ -100,6 +100,9 @@ class GraspPlan:
     # where the script puts the object down, from where it took it
     place_offset: tuple[float, float] = _ranged_as(GraspScriptConfig, "place_offset")
     gripper_model: str = "linkage"  # the hand (gripper_hands.py): where its pads lie
+    # the expected object's name (rig/objects.py): memorized events must have been felt on
+    # it; "" for a plan of no named object (then no event is checked against it)
+    object_name: str = ""
 
     def __post_init__(self):
         """ConfigError naming the first field outside its range."""
@@ -121,4 +124,5 @@ class GraspPlan:
             reach_s=g.reach_s, lift_s=g.lift_s, hold_s=g.hold_s, place_s=g.place_s,
             unload_s=g.unload_s, retract_s=g.retract_s, retract_distance=g.retract_distance,
             close_speed=g.close_speed, grip_force=g.grip_force, load_s=g.load_s,
-            place_offset=tuple(g.place_offset), gripper_model=gripper_model)
+            place_offset=tuple(g.place_offset), gripper_model=gripper_model,
+            object_name=object.name)

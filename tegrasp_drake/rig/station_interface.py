@@ -71,3 +71,19 @@ TACTILE_STALE = "tactile.stale"  # (1) 1 while the tactile stream is late
 TACTILE_ZEROING = "tactile.zeroing"  # (1) 1 while the taxel offsets are being measured
 # (abstract (n, 6) array [m/s^2]) every film sample of the tick, in device order
 TACTILE_PAD_ACCELERATION_SAMPLES = "tactile.pad_acceleration_samples"
+
+
+# The rates [Hz] a station's taxel_forces and pad_acceleration outputs are sampled at, (SA, RA),
+# kept on the station Diagram as this attribute by the station that knows them (the simulated
+# one, from its scenario); a real station's device sets its own, so none is declared.
+_SAMPLE_RATES_ATTRIBUTE = "tactile_sample_rates_hz"
+
+
+def declare_sample_rates(station, rates_hz: tuple[float, float]) -> None:
+    """Records on `station` the (SA, RA) rates [Hz] its tactile outputs are sampled at."""
+    setattr(station, _SAMPLE_RATES_ATTRIBUTE, (float(rates_hz[0]), float(rates_hz[1])))
+
+
+def declared_sample_rates(station) -> tuple[float, float] | None:
+    """The (SA, RA) rates [Hz] `station` declared (declare_sample_rates), or None."""
+    return getattr(station, _SAMPLE_RATES_ATTRIBUTE, None)

@@ -480,4 +480,5 @@ def MakeGraspStation(*, plant_config: MultibodyPlantConfig, arm: ArmDriverConfig
                                 camera=grasp_camera_pose(X_WO.translation(), grasp_height))
     diagram = builder.Build()
     diagram.set_name("grasp_station")
+    ports.declare_sample_rates(diagram, (tactile.sample_rate_hz, vibration.sample_rate_hz))
     return diagram

@@ -306,3 +306,35 @@ def test_events_given_to_a_controller_that_reads_none_are_refused(controller):
     with pytest.raises(ValueError, match=r"^AddGraspController: corrective_events: the "
                                          "controller's memorized_corrective.events names none"):
         T.MakeGraspDiagram(scenario, corrective_events=events, log=False)
+
+
+def _add_box_controller(**given):
+    """AddGraspController on the box's station, with the box scenario's arguments but `given`."""
+    from pydrake.systems.framework import DiagramBuilder
+    scenario = LoadScenario(name="box")
+    builder = DiagramBuilder()
+    station = builder.AddNamedSystem("station", T.MakeStation(scenario))
+    arguments = dict(controller=scenario.controller, plan=T.grasp_plan(scenario),
+                     station=station, arm=scenario.arm,
+                     sample_rates_hz=T.sample_rates_hz(scenario),
+                     events=T.load_controller_events(scenario))
+    arguments.update(given)
+    return T.AddGraspController(builder, **arguments)
+
+
+def test_a_grasp_controller_refuses_another_objects_events():
+    """The box's plan matched against the thin cylinder's templates is not the box's grasp
+    (load_controller_events refuses such events by the object's name too)."""
+    _add_box_controller()  # the box's own events are taken
+    cylinder = T.load_controller_events(LoadScenario(name="thin_cylinder"))
+    with pytest.raises(ValueError, match=r"^AddGraspController: events\['reach_load'\] was "
+                                         "felt on 'thin_cylinder', but the plan grasps 'box'"):
+        _add_box_controller(events=cylinder)
+
+
+def test_a_grasp_controller_refuses_rates_its_station_does_not_deliver():
+    """Windows read at 1 kHz from a 108 Hz SA output would span a tenth of the events' time."""
+    with pytest.raises(ValueError, match=r"^AddGraspController: sample_rates_hz \(1000, 1000\) "
+                                         r"Hz: the station samples SA at 108 Hz and RA at "
+                                         "1000 Hz"):
+        _add_box_controller(sample_rates_hz=(1000.0, 1000.0))
