@@ -274,6 +274,9 @@ def read_memorized_event(path, *, object_name: str | None = None,
     turned = event.negative_peak()
     if turned:
         raise MemorizedEventError(path, negative_peak_problem(*turned), owner)
+    falling = event.falling_first_contact()
+    if falling:
+        raise MemorizedEventError(path, falling_first_contact_problem(*falling), owner)
     for name, expected, found in (("object", object_name, event.object_name),
                                   ("transition", transition, event.transition)):
         if expected is not None and expected != found:
@@ -288,6 +291,14 @@ def negative_peak_problem(channel: str, index: int, value: float) -> str:
             "peak, but no sample is +1: max-normalising divides by the peak's magnitude, so "
             "a recorded window's peak is the force or vibration the pad felt, +1, and a "
             "negative peak is no window a recording gives (turned over or edited)")
+
+
+def falling_first_contact_problem(channel: str, before: float, after: float) -> str:
+    """The words for MemorizedEvent.falling_first_contact's (channel, before, after)."""
+    return (f"field 'samples.{channel}' peaks before the first contact and falls through it "
+            f"(mean {number_text(before)} before, {number_text(after)} after): at first "
+            "contact a pad's force rises, so this window is no recording's (reversed in time "
+            "or edited)")
 
 
 def has_index(events_dir) -> bool:

@@ -101,6 +101,10 @@ def extract_memorized_events(
         if turned:  # what the event files' reader refuses is never written
             from tegrasp_drake.events.event_file import negative_peak_problem
             raise ValueError(f"{what}: {negative_peak_problem(*turned)}")
+        falling = event.falling_first_contact()
+        if falling:  # the same: the reader refuses it
+            from tegrasp_drake.events.event_file import falling_first_contact_problem
+            raise ValueError(f"{what}: {falling_first_contact_problem(*falling)}")
         events[name] = event
     return events
 

@@ -49,7 +49,18 @@ def _turned_over_sa_window(folder):
         sa_left=[-v for v in data["samples"]["sa_left"]]))
 
 
+def _reversed_reach_load(folder):
+    """The box's Reach-Load windows reversed in time: each still max-normalised with its peak
+    +1, but the force falls through the first contact."""
+    edit_json(folder / "box" / "reach_load.json", lambda data: data["samples"].update(
+        {name: values[::-1] for name, values in data["samples"].items()}))
+
+
+# Rule: a reach_load window's force rises through the first contact; one that peaks before
+# it and falls (reversed in time, edited) is refused by the event files' reader and never
+# written by a recording.
 @pytest.mark.parametrize("spoil, expected", [
+    (_reversed_reach_load, "field 'samples.sa_left' peaks before the first contact and falls"),
     (_zero_channel, "channels ['ra_left'] are zero throughout the window"),
     (_turned_over_sa_window, "field 'samples.sa_left' sample 44 is -1, the window's peak"),
     (_drop_index_entry, "lists no load_lift event of object 'box'"),
@@ -321,3 +332,14 @@ def test_a_transition_with_a_grip_force_beyond_the_gripper_is_refused():
     with pytest.raises(ValueError, match="grip_force_n"):
         T.Transition(t=1.0, from_mode=T.Mode.LIFT, to_mode=T.Mode.LOAD,
                      trigger=list(T.Trigger)[0], reason="x", grip_force_n=1e9)
+
+
+def test_recording_never_writes_a_first_contact_whose_force_falls():
+    from tegrasp_drake.events.extraction import TactileTrial, extract_memorized_events
+    t = np.arange(0, 1.0, 0.001)
+    falling = 0.02 + 5.0 * (t < 0.5)  # a force that lets go at the "first contact"
+    sa = np.column_stack([falling, falling])
+    ra = np.column_stack([0.1 + (t > 0.5), 0.1 + (t > 0.5)])
+    trial = TactileTrial(t_sa=t, sa=sa, t_ra=t, ra=ra, transition_times={"reach_load": 0.5})
+    with pytest.raises(ValueError, match="'samples.sa_left' peaks before the first contact"):
+        extract_memorized_events(trial, object_name="box", sa_rate_hz=100.0, ra_rate_hz=1000.0)
