@@ -12,7 +12,8 @@ from tegrasp_drake.rig.api_boundary import check_field_values, public_dataclass
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
-from tegrasp_drake.rig.objects import DESCRIPTION_FIELDS, object_name_problem
+from tegrasp_drake.rig.objects import (DESCRIPTION_FIELDS, description_problem,
+                                       object_name_problem)
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.transitions import transition_order
 
@@ -89,6 +90,9 @@ class MemorizedEvent:
         if description and sorted(description) != sorted(DESCRIPTION_FIELDS):
             raise ValueError(f"object_description has fields {sorted(description)}; "
                              f"expected {sorted(DESCRIPTION_FIELDS)}")
+        problem = description and description_problem(description)
+        if problem:
+            raise ValueError(problem)
         object.__setattr__(self, "object_description", description)
 
     def channel(self, name: str) -> np.ndarray:

@@ -16,6 +16,7 @@ from tegrasp_drake.robotiq.dimensions import PAD_CENTER_Z, PALM_Z
 from tegrasp_drake.robotiq.units import STROKE_M
 from tegrasp_drake.rig.ranges import bounded, number_problem, real_number
 from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 # The entries of an object's `size` [m] for each shape.
@@ -215,6 +216,36 @@ def object_description(config: ObjectConfig) -> dict:
     return {"shape": config.shape, "size": [float(v) for v in config.size],
             "mass": float(config.mass), "friction": float(config.friction),
             "file": config.file}
+
+
+def description_problem(description: dict) -> str | None:
+    """What is wrong with an object description's values (object_description's form), in
+    words naming the field, else None: its shape one of OBJECT_SHAPES with that shape's
+    number of sizes, and size, mass and friction in ObjectConfig's declared ranges, as a
+    scenario's object must be (an event felt on no object a scenario can hold is no
+    recording's; a differing field that `event_object_may_differ` lets through must still
+    be an object's)."""
+    from tegrasp_drake.rig.ranges import field_range
+    shape, size = description.get("shape"), description.get("size")
+    if shape not in OBJECT_SHAPES:
+        return (f"field 'object_description.shape' is {shorten(repr(shape))}; it must be one "
+                f"of {', '.join(OBJECT_SHAPES)}")
+    if not isinstance(size, (list, tuple)) or len(size) != len(OBJECT_SIZES[shape]):
+        return (f"field 'object_description.size' must hold the {len(OBJECT_SIZES[shape])} "
+                f"sizes of a {shape} ({', '.join(OBJECT_SIZES[shape])}) [m]")
+    for name, values in (("size", size), ("mass", [description.get("mass")]),
+                         ("friction", [description.get("friction")])):
+        allowed = field_range(ObjectConfig, name)
+        for k, value in enumerate(values):
+            where = f"{name}[{k}]" if name == "size" else name
+            problem = number_problem(value)
+            if problem:
+                return f"field 'object_description.{where}' {problem}"
+            if not allowed.contains(real_number(value)):
+                return (f"field 'object_description.{where}' is "
+                        f"{number_text(real_number(value))}: it "
+                        f"{allowed.words(real_number(value))}")
+    return None
 
 
 def description_differences(recorded: dict, current: dict, *, rtol: float = 1e-9) -> list[str]:

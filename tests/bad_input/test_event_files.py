@@ -49,6 +49,25 @@ def _turned_over_sa_window(folder):
         sa_left=[-v for v in data["samples"]["sa_left"]]))
 
 
+def _negative_mass_described(folder):
+    """The box's Reach-Load file describes an object of mass -0.15 kg: no object a scenario
+    can hold, whether or not the controller lets the events' mass differ."""
+    edit_json(folder / "box" / "reach_load.json",
+              lambda data: data["object_description"].update(mass=-0.15))
+
+
+# Rule: an event file's object description holds an object a scenario could hold (shape,
+# sizes, mass and friction in ObjectConfig's ranges), also where event_object_may_differ
+# lets that field differ from the scenario's object.
+@pytest.mark.parametrize("extra", [[], ["--set", "controller.event_object_may_differ=[mass]"]])
+def test_an_event_felt_on_an_impossible_object_is_refused(extra, events_copy, capfd):
+    _negative_mass_described(events_copy)
+    code, text = run_cli(["trial", "--events", str(events_copy), *extra], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "reach_load.json", "'object_description.mass' is -0.15",
+                          "must lie in")
+
+
 def _reversed_reach_load(folder):
     """The box's Reach-Load windows reversed in time: each still max-normalised with its peak
     +1, but the force falls through the first contact."""
