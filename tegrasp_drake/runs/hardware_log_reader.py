@@ -124,10 +124,11 @@ def _plausible_header(data: bytes, position: int) -> bool:
     if len(data) - position < _EVENT_HEADER.size:
         return False
     word, _, _, channel_length, data_length = _EVENT_HEADER.unpack_from(data, position)
+    if not (word == LCM_SYNC and 0 < channel_length <= MAX_CHANNEL_LENGTH
+            and data_length <= MAX_LCM_MESSAGE_BYTES):
+        return False  # lengths first: the channel is sliced only once it is known short
     channel = data[position + _EVENT_HEADER.size:position + _EVENT_HEADER.size + channel_length]
-    return (word == LCM_SYNC and 0 < channel_length <= MAX_CHANNEL_LENGTH
-            and data_length <= MAX_LCM_MESSAGE_BYTES and len(channel) == channel_length
-            and all(32 < c < 127 for c in channel))
+    return len(channel) == channel_length and all(32 < c < 127 for c in channel)
 
 
 def _next_header(data: bytes, start: int) -> int:

@@ -343,3 +343,28 @@ def test_the_log_writers_count_skips_a_corrupt_first_frame(run_log_path, tmp_pat
     writer.path.write_bytes(_first_data_length(run_log_path.read_bytes(), 2**31 - 1))
     total = sum(read_run_log(run_log_path).message_counts.values())
     assert writer.messages == total - 1
+
+
+class _SliceRecorder(bytes):
+    """Bytes that note the length of every slice taken of them."""
+    lengths: list
+
+    def __getitem__(self, index):
+        part = super().__getitem__(index)
+        if isinstance(index, slice):
+            type(self).lengths.append(len(part))
+        return part
+
+
+# Rule: scanning a log copies at most a header's channel (MAX_CHANNEL_LENGTH bytes) per place
+# it looks at, so bytes made of sync words (each a header whose lengths are themselves sync
+# words) are scanned in time proportional to their size: the channel was sliced before its
+# length was checked, up to the rest of the file at each of a million sync words (a 4 MB file
+# took 70 s).
+def test_a_log_of_sync_words_is_scanned_without_copying_the_rest_at_each(tmp_path):
+    from tegrasp_drake.runs import hardware_log_reader as reader
+    _SliceRecorder.lengths = []
+    data = _SliceRecorder(reader.LCM_LOG_START * 4096)
+    events, damage = reader._scan_lcm_bytes(data)
+    assert events == [] and damage
+    assert max(_SliceRecorder.lengths, default=0) <= reader.MAX_CHANNEL_LENGTH
