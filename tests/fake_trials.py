@@ -231,3 +231,13 @@ def full_disk_fake_trial(trial, *, log_dir):
     save_log_copy(save, pathlib.Path(log_dir) / f"{trial['trial_id'].replace('/', '.')}.log",
                   result)
     return result
+
+
+def small_trial_log():
+    """A small TrialLog that load_trial_log reads and TrialLog.save writes (probes.trial_log's
+    eleven-sample arrays), for tests of how a log is written rather than of what it holds."""
+    import tempfile
+    from tegrasp_drake.scenario.trial_log_file import load_trial_log
+    from tests.bad_input.probes import trial_log
+    with tempfile.TemporaryDirectory() as folder:
+        return load_trial_log(trial_log(pathlib.Path(folder) / "small.npz"))

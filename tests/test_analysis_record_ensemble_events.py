@@ -9,7 +9,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from tegrasp_drake.recording import campaign
-from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, TrialLog
+from tests.fake_trials import small_trial_log
 from tests.analysis_script import load_analysis_script
 
 
@@ -21,9 +21,11 @@ def test_a_full_logs_folder_is_one_error_line_and_exit_1(tmp_path, monkeypatch, 
     script = _script()
     simulated = []
 
+    small_log = small_trial_log()  # made before np.savez_compressed is replaced below
+
     def ideal_grasp(scenario, *, duration, progress):  # a small log, no physics
         simulated.append(scenario.random_seed)
-        return TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}), 0.0
+        return small_log, 0.0
 
     def disk_full(stream, **arrays):
         stream.write(b"PK\x03\x04 a part of the archive")

@@ -66,10 +66,20 @@ class TrialLog:
     meta: dict
 
     def save(self, path) -> pathlib.Path:
+        """Writes the log to `path` (.npz), atomically. TrialLogError naming `path`, and
+        nothing written, for a log load_trial_log would refuse (arrays of other shapes,
+        channels that are not Eq. 1-2 of the taxels and accelerations, metadata that
+        disagrees with them): what the one reader refuses is never written."""
         path = pathlib.Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
+        if not isinstance(self.meta, dict):
+            raise TrialLogError(f"TrialLog.save: '{path}' not written: meta is a "
+                                f"{type(self.meta).__name__}, not the metadata's dict")
         meta = dict(self.meta, format_version=FORMAT_VERSION)
         arrays = {name: getattr(self, name) for name in ARRAY_FIELDS}
+        problem = trial_log_problem(meta, arrays)
+        if problem:
+            raise TrialLogError(f"TrialLog.save: '{path}' not written: {problem}")
+        path.parent.mkdir(parents=True, exist_ok=True)
         with (temporary_sibling(path, start=NPZ_START) as temporary,
               open(temporary, "wb") as f):
             # A full disk or Ctrl-C leaves no truncated log, and an earlier one whole; what a
@@ -162,12 +172,19 @@ def load_trial_log(path: PathLike) -> TrialLog:
                             f"{shorten(repr(version))}, this package reads "
                             f"{FORMAT_VERSION}; run the trial again with this package to "
                             "remake it")
-    scenario, problem = logged_scenario(meta)
-    problem = (problem or trial_arrays_problem(arrays, scenario)
-               or meta_problem(meta, arrays, scenario))
+    problem = trial_log_problem(meta, arrays)
     if problem:
         raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
+
+
+def trial_log_problem(meta: dict, arrays: dict) -> str | None:
+    """What is wrong with a trial log's metadata and arrays together, in words, else None:
+    its scenario, its arrays (trial_arrays_problem) and its metadata against them
+    (meta_problem). load_trial_log refuses such a log and TrialLog.save never writes one."""
+    scenario, problem = logged_scenario(meta)
+    return (problem or trial_arrays_problem(arrays, scenario)
+            or meta_problem(meta, arrays, scenario))
 
 
 def _is_time(value) -> bool:

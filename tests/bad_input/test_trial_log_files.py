@@ -18,12 +18,12 @@ import tegrasp_drake as T
 from tegrasp_drake.emulators.myrio_emulator import TactileRecordingError, load_tactile_recording
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_from_yaml, scenario_to_yaml
-from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, TrialLog, TrialLogError,
+from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, FORMAT_VERSION, TrialLogError,
                                                    load_trial_log)
 from tests.bad_input.probes import (META, SCENARIO, TIMELINE, assert_one_line_error, log_refusal,
                                     meta_refused, one_line_of, refused_log, refused_meta,
                                     result_refused, run_cli, run_probe, trial_log, trial_log_with)
-from tests.fake_trials import whole_result
+from tests.fake_trials import small_trial_log, whole_result
 
 
 def _truncate(path):
@@ -109,7 +109,10 @@ def _small_trial_log(path, channels: int) -> pathlib.Path:
     arrays["object_state"][:, 0] = 1.0  # the identity orientation, a unit quaternion
     for name in ("arm_q", "arm_q_desired"):  # joints 2 and 3 within the JACO2's limits
         arrays[name][:, 1:3] = [3.0, 1.0]
-    return TrialLog(meta={"controller": "memorized"}, **arrays).save(path)
+    # written as it stands (TrialLog.save refuses such a log): what the readers are given
+    np.savez_compressed(path, meta=np.array(json.dumps(
+        {"format_version": FORMAT_VERSION, "controller": "memorized"})), **arrays)
+    return path
 
 
 def test_a_trial_log_the_plots_refuse_is_not_streamed_either(tmp_path):
@@ -435,8 +438,7 @@ def test_a_log_without_phase_starts_is_refused(tmp_path):
 
 
 def test_a_trial_log_whose_metadata_is_a_list_is_not_a_trial_log(tmp_path):
-    saved = TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}).save(
-        tmp_path / "saved.npz")
+    saved = small_trial_log().save(tmp_path / "saved.npz")
     with np.load(saved) as data:
         arrays = {name: data[name] for name in data.files}
     arrays["meta"] = np.array("[1, 2]")  # the metadata's JSON text: a list
@@ -445,3 +447,24 @@ def test_a_trial_log_whose_metadata_is_a_list_is_not_a_trial_log(tmp_path):
     with pytest.raises(TrialLogError, match="its metadata is a JSON list, not the object a "
                                             "trial log holds; it is not a trial log"):
         load_trial_log(path)
+
+
+# Rule: TrialLog.save never writes a log that load_trial_log refuses (one checker for both):
+# channels that are not Eq. 1-2 of the taxels, or taxels of another shape, are refused
+# naming the path, and nothing is written there.
+@pytest.mark.parametrize("spoil, expected", [
+    (lambda log: {"channels": log.channels * 2}, "channel"),
+    (lambda log: {"taxels": np.zeros((5, 3))}, "taxels"),
+])
+def test_a_trial_log_the_reader_refuses_is_never_saved(spoil, expected, tmp_path,
+                                                       ideal_grasp_log):
+    import dataclasses
+    log = ideal_grasp_log("box")
+    log.save(tmp_path / "whole" / "trial.npz")  # the log as run: saved
+    (tmp_path / "whole" / "trial.npz").unlink()
+    (tmp_path / "whole").rmdir()
+    spoiled = dataclasses.replace(log, **spoil(log))
+    path = tmp_path / "spoiled.npz"
+    with pytest.raises(TrialLogError, match=f"TrialLog.save: '{path}' not written: .*{expected}"):
+        spoiled.save(path)
+    assert not path.exists() and list(tmp_path.iterdir()) == []

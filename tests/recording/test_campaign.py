@@ -12,7 +12,8 @@ import pytest
 
 from tests.bad_input.probes import memorized_events
 from tegrasp_drake.recording import campaign
-from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, LogNotWritten, TrialLog
+from tegrasp_drake.scenario.trial_log_file import LogNotWritten
+from tests.fake_trials import small_trial_log
 
 RUNS = [campaign.CampaignRun("run0", types.SimpleNamespace(random_seed=1_000_000)),
         campaign.CampaignRun("run1", types.SimpleNamespace(random_seed=1_000_001)),
@@ -25,10 +26,11 @@ def simulated(monkeypatch):
     """The runs' labels as each is simulated (a small log, no physics), each cut into the
     probes' events (seeded by the run)."""
     labels = []
+    small_log = small_trial_log()  # made before a test replaces np.savez_compressed
 
     def ideal_grasp(scenario, *, duration, progress):
         labels.append(RUNS[scenario.random_seed - 1_000_000].label)
-        return TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}), 0.0
+        return small_log, 0.0
 
     def cut(log, run, times, **options):
         return {e.transition: e for e in memorized_events(seed=run.scenario.random_seed)}
@@ -87,8 +89,10 @@ def test_a_corrective_recording_on_a_full_disk_carries_its_one_event(tmp_path, m
     import dataclasses
     from tegrasp_drake.recording import corrective_events
 
+    small_log = small_trial_log()  # made before np.savez_compressed is replaced below
+
     def ideal_grasp(scenario, *, duration, progress):  # a small log, no physics
-        return TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}), 0.0
+        return small_log, 0.0
 
     def cut(log, run, times, **options):  # the probes' first event, as hold_avoid's
         (transition,) = times

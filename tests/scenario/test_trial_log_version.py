@@ -7,13 +7,13 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.rig.ranges import is_integer
-from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, FORMAT_VERSION, TrialLog,
-                                                   TrialLogError, load_trial_log)
+from tegrasp_drake.scenario.trial_log_file import (FORMAT_VERSION, TrialLogError,
+                                                   load_trial_log)
+from tests.fake_trials import small_trial_log
 
 
 def test_a_trial_log_whose_format_version_is_true_is_refused(tmp_path):
-    saved = TrialLog(**{name: np.zeros(2) for name in ARRAY_FIELDS}, meta={}).save(
-        tmp_path / "saved.npz")
+    saved = small_trial_log().save(tmp_path / "saved.npz")
     with np.load(saved) as data:
         arrays = {name: data[name] for name in data.files}
     meta = json.loads(str(arrays["meta"]))
