@@ -144,6 +144,18 @@ class RunLogReplay:
             "sequence_fire_times": self.in_sequence.fire_times}
 
 
+def _check_events_felt_on_the_runs_object(scenario, folder, events: dict, path) -> None:
+    """MemorizedEventError when the run's object's events were felt on another object than
+    the one the run grasped (its logged scenario's, resolved as the run resolved it), as a
+    trial's and a hardware run's events are checked (load_controller_events)."""
+    import dataclasses
+    from tegrasp_drake.scenario.scenario import resolve_object
+    from tegrasp_drake.scenario.scenario_events import check_events_object
+    grasped = resolve_object(scenario.object, f"run log '{path}': its {RUN_INFO_CHANNEL} "
+                             "scenario", loaded=True)
+    check_events_object(dataclasses.replace(scenario, object=grasped), folder, events)
+
+
 def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it both ways, with the events of
@@ -171,6 +183,8 @@ def replay_run_log(path, *, object_name: str | None = None,
                 "the folder holding the object's events, to replay with those")
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
+    if log.scenario is not None and object_name == log.scenario.object.name:
+        _check_events_felt_on_the_runs_object(log.scenario, folder, events, path)
     events_dir = str(folder)
     # a scenario_yaml that does not read is damage (RunLog.damage): the defaults are used
     config = matcher_config_of_run(None if log.scenario_problem else info, events,

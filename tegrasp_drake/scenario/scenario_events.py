@@ -56,8 +56,7 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.events.events_folder import find_memorized_events
     from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
-    from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, description_differences,
-                                           object_description)
+    from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
     name = scenario.object.name
     try:
         folder, events = find_memorized_events(folders, name,
@@ -72,6 +71,19 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
                       "FILE --scenario-name NAME` (or the same --set options you gave "
                       "here), or run `--controller heuristic`.",)
         raise
+    check_events_object(scenario, folder, events, nominal_object=nominal_object)
+    return events
+
+
+def check_events_object(scenario, folder, events: dict, *,
+                        nominal_object: ObjectConfig | None = None) -> None:
+    """MemorizedEventError naming the event file when an event of `events` (read from
+    `folder`) records no object or one that differs from the scenario's object (or
+    `nominal_object`) in a field not in controller.event_object_may_differ: events are used
+    only on the object they felt (load_controller_events, tegrasp replay)."""
+    from tegrasp_drake.events import MemorizedEventError
+    from tegrasp_drake.rig.objects import description_differences, object_description
+    name = scenario.object.name
     current = object_description(nominal_object or scenario.object)
     allowed = set(scenario.controller.event_object_may_differ)
     for event in events.values():
@@ -91,7 +103,6 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
                 f"accept the difference with --set controller.event_object_may_differ="
                 f"[{','.join(d.split(' ', 1)[0] for d in differences)}].",)
             raise error
-    return events
 
 
 # The hand of a scenario whose gripper section has no `model` (the prismatic one).

@@ -23,7 +23,7 @@ from tegrasp_drake.runs.hardware_log_reader import read_run_log
 from tegrasp_drake.runs.hardware_run import transition_message
 from tegrasp_drake.scenario.scenario import Scenario, scenario_to_yaml
 from tegrasp_drake.scenario.trial_log_writer import package_versions
-from tests.bad_input.probes import run_cli
+from tests.bad_input.probes import assert_one_line_error, run_cli
 from tests.runs.test_hardware_log_reader import EVENTS, GRASP, logged_transitions, tactile_message
 
 
@@ -518,3 +518,21 @@ def test_a_real_log_cut_short_keeps_the_truncated_wording(cut, tmp_path, capfd):
     code, text = run_cli(["replay", str(path)], capfd)
     assert code == 1 and "holds no LCM message (truncated: " in text, text
     assert "not an LCM log" not in text, text
+
+
+# Rule: the run's object's events are used only if they were felt on the object the run
+# grasped (its logged scenario's), as a trial's and a hardware run's are; events of the same
+# name recorded on a heavier box are refused naming the file and the field.
+def test_a_replay_with_events_felt_on_another_object_is_refused(tmp_path, capfd):
+    import dataclasses
+    heavier = [dataclasses.replace(event, object_description={**event.object_description,
+                                                              "mass": 0.3})
+               for event in EVENTS.values()]
+    save_memorized_events(tmp_path / "events", heavier)
+    path = _run_log(tmp_path / "run.lcmlog")
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "recorded on another object: mass 0.3 (recorded)")
+    save_memorized_events(tmp_path / "same", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "same")], capfd)
+    assert code == 0, text

@@ -22,12 +22,15 @@ from tegrasp_drake.runs.hardware_log_replay import (expected_event_schedule,
                                                     matcher_config_of_run, replay_matcher)
 from tegrasp_drake.events.event_matcher import EventMatcherConfig
 from tegrasp_drake.events.replay import live_matcher_config
+from tegrasp_drake.rig.objects import object_description
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.trial_log_writer import package_versions
 
 GRASP = SyntheticGraspConfig()
-EVENTS = extract_memorized_events(synthetic_grasp(GRASP), object_name="box",
-                                  sa_rate_hz=100.0, ra_rate_hz=1000.0, package_versions={})
+# felt on the box (a replay checks the run's object's events against the object it grasped)
+EVENTS = extract_memorized_events(
+    synthetic_grasp(GRASP), object_name="box", sa_rate_hz=100.0, ra_rate_hz=1000.0,
+    package_versions={}, object_description=object_description(LoadScenario(name="box").object))
 LATE = 0.3  # [s] the logged transitions come this long after the physical events
 
 
