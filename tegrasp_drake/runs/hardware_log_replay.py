@@ -26,6 +26,7 @@ from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
 from tegrasp_drake.rig import paths
 from tegrasp_drake.runs.hardware_log_reader import RunLog, RunLogError, read_run_log
 from tegrasp_drake.scenario.scenario import sample_rates_hz, scenario_from_yaml
+from tegrasp_drake.scenario.scenario_events import check_recorded_runs
 
 logger = logging.getLogger(__name__)
 
@@ -171,6 +172,7 @@ def replay_run_log(path, *, object_name: str | None = None,
                 "the folder holding the object's events, to replay with those")
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
+    check_recorded_runs(folder, events)
     events_dir = str(folder)
     # a scenario_yaml that does not read is damage (RunLog.damage): the defaults are used
     config = matcher_config_of_run(None if log.scenario_problem else info, events,
