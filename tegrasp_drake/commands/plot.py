@@ -154,7 +154,7 @@ def _plot_sweep(args, out) -> str:
                          "sweep writes its records there); give the --out folder of "
                          "`tegrasp sweep`")
     loaded = load_records(args.source)
-    problem = loaded.corrupt_problem(args.source)
+    problem = loaded.table_problem(args.source)
     if problem:
         raise SystemExit(f"tegrasp: error: {problem}")
     records = list(loaded.records.values())
