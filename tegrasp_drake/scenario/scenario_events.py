@@ -100,15 +100,18 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
 @functools.lru_cache(maxsize=16)
 def _recorded_run(scenario_text: str) -> tuple[float, float, float] | None:
     """(time limit [s], SA rate [Hz], RA rate [Hz]) of the scenario an event's `scenario`
-    text holds, or None when the text is no scenario this version reads (a note, e.g. an
-    ensemble's combined runs, or an older layout)."""
+    text holds, or None when the text is no whole scenario this version reads (a note, e.g.
+    an ensemble's combined runs, an empty text, or an older layout). A recording stores the
+    whole scenario it ran (scenario_to_yaml), its object described."""
     from tegrasp_drake.rig.typed_yaml import ConfigError
     from tegrasp_drake.scenario.grasp_diagram import scenario_time_limit
     from tegrasp_drake.scenario.scenario import sample_rates_hz, scenario_from_yaml
     try:
         recorded = scenario_from_yaml(scenario_text, "a memorized event's scenario")
+        if not (recorded.object.shape and recorded.object.size):
+            return None
         return (scenario_time_limit(recorded), *sample_rates_hz(recorded))
-    except (ConfigError, ValueError, TypeError, KeyError):
+    except (ConfigError, ValueError, TypeError, KeyError, IndexError, AttributeError):
         return None
 
 
