@@ -92,6 +92,7 @@ def _plot_events(args, out) -> str:
     from tegrasp_drake.events import MemorizedEventError, load_all_memorized_events
     from tegrasp_drake.events.event_file import has_index
     from tegrasp_drake.figures.events import plot_memorized_events
+    from tegrasp_drake.scenario.scenario_events import check_recorded_runs
     check_events_folder(args.events)
     events = {}
     try:
@@ -101,6 +102,8 @@ def _plot_events(args, out) -> str:
         for folder in reversed(paths.events_search_path(args.events)):
             if has_index(folder) or args.events:
                 loaded = load_all_memorized_events(folder)
+                for object_events in loaded.values():
+                    check_recorded_runs(folder, object_events)
                 logger.debug(f"plot events: {len(loaded)} memorized events from {folder}")
                 events.update(loaded)
     except MemorizedEventError as e:
@@ -151,7 +154,7 @@ def _plot_sweep(args, out) -> str:
                          "sweep writes its records there); give the --out folder of "
                          "`tegrasp sweep`")
     loaded = load_records(args.source)
-    problem = loaded.corrupt_problem(args.source)
+    problem = loaded.table_problem(args.source)
     if problem:
         raise SystemExit(f"tegrasp: error: {problem}")
     records = list(loaded.records.values())

@@ -302,12 +302,12 @@ def load_sweep_records(script: str, results, what: str = "results folder",
                        advice: str = SWEEP_RESULTS_ADVICE):
     """The records (sweep.LoadedRecords) of the sweep folder `results`, which the script's
     argument `what` names; SystemExit with one line if it is no folder to read
-    (refuse_unusable_input) or any record is corrupt (LoadedRecords.corrupt_problem, as
-    `tegrasp plot` refuses it)."""
+    (refuse_unusable_input), any record is corrupt or records mix memorized events
+    (LoadedRecords.table_problem, as `tegrasp plot` refuses them)."""
     from tegrasp_drake.sweep.records import load_records
     refuse_unusable_input(script, results, what, advice)
     loaded = load_records(results)
-    problem = loaded.corrupt_problem(results)
+    problem = loaded.table_problem(results)
     if problem:
         raise SystemExit(f"{script}: error: {problem}")
     return loaded

@@ -14,7 +14,7 @@ import pathlib
 
 import numpy as np
 
-from tegrasp_drake.rig.channels import CHANNEL_NAMES
+from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
 from tegrasp_drake.rig.files import JsonFileError, error_line, one_line, read_json_file
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, object_name_problem
@@ -277,6 +277,13 @@ def read_memorized_event(path, *, object_name: str | None = None,
     falling = event.falling_first_contact()
     if falling:
         raise MemorizedEventError(path, falling_first_contact_problem(*falling), owner)
+    version = data.get("format_version")
+    quiet = [CHANNEL_NAMES[i] for i in RA_CHANNELS if np.all(event.ra[i - 2] == 1.0)]
+    if version != FORMAT_VERSION and quiet:
+        raise MemorizedEventError(
+            path, f"field 'samples.{quiet[0]}' is a window of ones, a quiet RA window, which "
+            f"a format_version {version} file never holds: its windows are as cut, and a cut "
+            "vibration window is never constant (quiet windows came with version 3)", owner)
     for name, expected, found in (("object", object_name, event.object_name),
                                   ("transition", transition, event.transition)):
         if expected is not None and expected != found:

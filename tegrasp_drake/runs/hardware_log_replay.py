@@ -25,7 +25,8 @@ from tegrasp_drake.events.transitions import transition_name
 from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
 from tegrasp_drake.rig import paths
 from tegrasp_drake.runs.hardware_log_reader import RunLog, RunLogError, read_run_log
-from tegrasp_drake.scenario.scenario import sample_rates_hz, scenario_from_yaml
+from tegrasp_drake.scenario.scenario import resolve_object, sample_rates_hz, scenario_from_yaml
+from tegrasp_drake.scenario.scenario_events import check_events_object, check_recorded_runs
 
 logger = logging.getLogger(__name__)
 
@@ -149,8 +150,6 @@ def _check_events_felt_on_the_runs_object(scenario, folder, events: dict, path) 
     the one the run grasped (its logged scenario's, resolved as the run resolved it), as a
     trial's and a hardware run's events are checked (load_controller_events)."""
     import dataclasses
-    from tegrasp_drake.scenario.scenario import resolve_object
-    from tegrasp_drake.scenario.scenario_events import check_events_object
     grasped = resolve_object(scenario.object, f"run log '{path}': its {RUN_INFO_CHANNEL} "
                              "scenario", loaded=True)
     check_events_object(dataclasses.replace(scenario, object=grasped), folder, events)
@@ -183,6 +182,7 @@ def replay_run_log(path, *, object_name: str | None = None,
                 "the folder holding the object's events, to replay with those")
         events_dir = info.events_dir
     folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
+    check_recorded_runs(folder, events)
     if log.scenario is not None and object_name == log.scenario.object.name:
         _check_events_felt_on_the_runs_object(log.scenario, folder, events, path)
     events_dir = str(folder)

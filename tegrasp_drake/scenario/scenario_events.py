@@ -3,6 +3,8 @@ its hand, from the events search path (rig/paths.py), checked against the object
 recorded on. They read the whole Scenario, so they live with it; the controller itself takes
 the events given."""
 
+import functools
+import pathlib
 from typing import Annotated
 
 from tegrasp_drake.control.grasp_controller import controller_events_folders
@@ -71,6 +73,7 @@ def _load_checked_events(scenario, folders, *, nominal_object=None, required=Non
                       "FILE --scenario-name NAME` (or the same --set options you gave "
                       "here), or run `--controller heuristic`.",)
         raise
+    check_recorded_runs(folder, events)
     check_events_object(scenario, folder, events, nominal_object=nominal_object)
     return events
 
@@ -103,6 +106,67 @@ def check_events_object(scenario, folder, events: dict, *,
                 f"accept the difference with --set controller.event_object_may_differ="
                 f"[{','.join(d.split(' ', 1)[0] for d in differences)}].",)
             raise error
+
+
+@functools.lru_cache(maxsize=16)
+def _recorded_run(scenario_text: str) -> tuple[float, float, float] | None:
+    """(time limit [s], SA rate [Hz], RA rate [Hz]) of the scenario an event's `scenario`
+    text holds, or None when the text is no whole scenario this version reads (a note, e.g.
+    an ensemble's combined runs, an empty text, or an older layout). A recording stores the
+    whole scenario it ran (scenario_to_yaml), its object described."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError
+    from tegrasp_drake.scenario.grasp_diagram import scenario_time_limit
+    from tegrasp_drake.scenario.scenario import sample_rates_hz, scenario_from_yaml
+    try:
+        recorded = scenario_from_yaml(scenario_text, "a memorized event's scenario")
+        if not (recorded.object.shape and recorded.object.size):
+            return None
+        return (scenario_time_limit(recorded), *sample_rates_hz(recorded))
+    except (ConfigError, ValueError, TypeError, KeyError, IndexError, AttributeError):
+        return None
+
+
+def recorded_run_problem(event) -> str | None:
+    """Why `event` cannot have been cut from the run it says it was recorded in, or None: its
+    window (transition_time_s - pre_transition_s, window_s long) must end within that run,
+    by its scenario's time limit when its `scenario` text is a scenario, else by the longest
+    run any scenario allows; and its rates must be that scenario's sample rates, at which a
+    recording cuts its windows (recording/campaign.cut_events)."""
+    from tegrasp_drake.rig.number_text import number_text
+    from tegrasp_drake.scenario.grasp_diagram import longest_trial_s
+    run = _recorded_run(event.scenario)
+    start = event.transition_time_s - event.pre_transition_s
+    end = start + event.window_s
+    if run is None:
+        limit, whose = longest_trial_s(), "the longest run any scenario allows"
+    else:
+        limit, whose = run[0], ("the time limit of the scenario it was recorded in (its "
+                                "`scenario` field)")
+    if end > limit:
+        return (f"field 'transition_time_s' is {number_text(event.transition_time_s)} s, so "
+                f"its window ({number_text(start)} to {number_text(end)} s) ends after "
+                f"{whose}, {number_text(limit)} s: no recorded run holds it")
+    if run is not None:
+        for field, rate, recorded, setting in (
+                ("sa_rate_hz", event.sa_rate_hz, run[1], "tactile.sample_rate_hz"),
+                ("ra_rate_hz", event.ra_rate_hz, run[2], "vibration.sample_rate_hz")):
+            if rate != recorded:
+                return (f"field '{field}' is {number_text(rate)} Hz, but the scenario it was "
+                        f"recorded in (its `scenario` field) samples at "
+                        f"{number_text(recorded)} Hz ({setting}), the rate a recording cuts "
+                        "its windows at")
+    return None
+
+
+def check_recorded_runs(folder, events: dict) -> None:
+    """MemorizedEventError naming the file and field of the first of `events` (loaded from
+    `folder`, by transition) that recorded_run_problem refuses."""
+    from tegrasp_drake.events import MemorizedEventError
+    for event in events.values():
+        problem = recorded_run_problem(event)
+        if problem:
+            raise MemorizedEventError(pathlib.Path(folder) / event.relative_path(), problem,
+                                      event.object_name)
 
 
 # The hand of a scenario whose gripper section has no `model` (the prismatic one).

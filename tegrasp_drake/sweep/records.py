@@ -72,6 +72,46 @@ class LoadedRecords:
                 f"{reason}); a table or figure without them would be wrong: `tegrasp sweep "
                 f"--out {out_dir}` with the sweep's options runs them again")
 
+    def table_problem(self, out_dir) -> str | None:
+        """Why a table or figure may not be made from this folder's records, or None: a
+        corrupt record (corrupt_problem), or records that mix memorized events
+        (mixed_events_problem)."""
+        return (self.corrupt_problem(out_dir)
+                or mixed_events_problem(self.records.values(), out_dir))
+
+
+def events_words(events: dict | None) -> str:
+    """A record's events in words: their hash's first 12 hex digits and the folder."""
+    if events is None:
+        return "none"
+    folder = events["folder"] or "your events folder, then the package's"
+    return f"sha256 {events['sha256'][:12]}... from {folder}"
+
+
+def mixed_events_problem(records, out_dir=None) -> str | None:
+    """Why `records` (valid records) may not be counted together, or None: two records of one
+    controller on one object (a row of Table I) that matched against different memorized
+    events (their "events" sha256 differ). Each object has its own events and each controller
+    reads its own folder's, so records differ there only between rows; a record that names
+    no events (a controller that reads none, or a format-1 record) is not compared."""
+    first = {}  # (controller, object) -> the first record naming its events
+    for record in records:
+        events = record.get("events")
+        if events is None:
+            continue
+        key = (record["trial"]["controller"], record["trial"]["object_name"])
+        other = first.setdefault(key, record)
+        if other["events"]["sha256"] != events["sha256"]:
+            where = f"{out_dir}: " if out_dir is not None else ""
+            names = [f"{TRIALS_FOLDER}/{record_file_name(r['trial_id'])}"
+                     for r in (other, record)]
+            return (f"{where}records {names[0]} and {names[1]} ({key[0]} on '{key[1]}') "
+                    f"matched against different memorized events ({events_words(other['events'])}; "
+                    f"{events_words(events)}), and a table counting both would mix them: keep "
+                    "the records of one events set in a folder (run the sweep again into "
+                    "another --out with one --events)")
+    return None
+
 
 def record_file_name(trial_id: str) -> str:
     return trial_id.replace("/", ".") + ".json"

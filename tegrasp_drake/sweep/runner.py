@@ -33,6 +33,7 @@ from tegrasp_drake.sweep.records import (
     RecordError,
     canonical_json,
     earlier_temporary_files,
+    events_words,
     load_records,
     make_record,
     record_name_trial_id,
@@ -375,14 +376,6 @@ def trial_events_identities(trial_function, trials) -> dict[str, dict | None]:
     return identities(trials, keywords.get("events_dir"))
 
 
-def _events_words(events: dict | None) -> str:
-    """A record's events in words: their hash's first 12 hex digits and the folder."""
-    if events is None:
-        return "none"
-    folder = events["folder"] or "your events folder, then the package's"
-    return f"sha256 {events['sha256'][:12]}... from {folder}"
-
-
 def _check_same_events(events: dict, records: dict, out_dir) -> None:
     """Refuses a folder whose finished records matched against other memorized events than
     `events` ({trial id: identity}) says this sweep's trials will: their content hashes
@@ -399,8 +392,8 @@ def _check_same_events(events: dict, records: dict, out_dir) -> None:
         elif recorded["sha256"] != identity["sha256"]:
             raise SweepError(
                 f"{out_dir} holds a record of trial {trial_id} made with other memorized "
-                f"events ({_events_words(recorded)}) than this sweep's "
-                f"({_events_words(identity)}); resume with the same events (--events), or "
+                f"events ({events_words(recorded)}) than this sweep's "
+                f"({events_words(identity)}); resume with the same events (--events), or "
                 "choose another output folder")
     if unknown:
         logger.warning(f"{out_dir}: {unknown} finished record(s) do not name the memorized "

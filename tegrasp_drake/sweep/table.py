@@ -15,7 +15,7 @@ import numpy as np
 from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
 from tegrasp_drake.rig.files import JSON_OBJECT_START, MARKDOWN_START, write_atomically
-from tegrasp_drake.sweep.records import record_result
+from tegrasp_drake.sweep.records import mixed_events_problem, record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 
 # (placement, phase) columns of Table I, in the paper's order.
@@ -64,7 +64,12 @@ def ordered_names(names, preferred) -> list:
 
 
 def table1_rows(records) -> list[Table1Row]:
-    """Table I rows per controller: one per object, then the average row."""
+    """Table I rows per controller: one per object, then the average row; ValueError when
+    records of one row matched against different memorized events (mixed_events_problem)."""
+    records = list(records)
+    problem = mixed_events_problem(records)
+    if problem:
+        raise ValueError(f"table1_rows: {problem}")
     counts = defaultdict(lambda: [0, 0])   # (controller, object, column) -> [succ, trials]
     errors = Counter()                     # (controller, object) -> error records
     controllers, objects = set(), set()

@@ -362,3 +362,86 @@ def test_recording_never_writes_a_first_contact_whose_force_falls():
     trial = TactileTrial(t_sa=t, sa=sa, t_ra=t, ra=ra, transition_times={"reach_load": 0.5})
     with pytest.raises(ValueError, match="'samples.sa_left' peaks before the first contact"):
         extract_memorized_events(trial, object_name="box", sa_rate_hz=100.0, ra_rate_hz=1000.0)
+
+
+# Rule: an event's window was cut from the run its `scenario` field records, so it lies within
+# that run: it ends by that scenario's time limit (a note's event, e.g. an ensemble's, by the
+# longest run any scenario allows). A transition time past it is refused naming the file and
+# the field, by a trial before it runs and by `tegrasp plot events`.
+@pytest.mark.parametrize("folder, time, words", [
+    ("box", 22.7, "ends after the time limit of the scenario it was recorded in"),
+    ("box", 1e6, "ends after the time limit of the scenario it was recorded in"),
+    ("ensemble/box", 1e6, "ends after the longest run any scenario allows"),
+])
+def test_an_event_whose_transition_lies_past_its_recorded_run_is_refused(
+        folder, time, words, events_copy, no_simulation, capfd):
+    path = events_copy / folder / "reach_load.json"
+    edit_json(path, lambda data: data.update(transition_time_s=time))
+    argv = (["trial", "--events", str(events_copy)] if folder == "box" else
+            ["trial", "--controller", "taxel_aware", "--events", str(events_copy)])
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, str(path), "field 'transition_time_s'", words,
+                          "Remake it with")
+    if folder == "box":
+        code, text = run_cli(["plot", "events", "--events", str(events_copy), "--out",
+                              str(events_copy / "p.png")], capfd)
+        assert_one_line_error(code, text, str(path), "field 'transition_time_s'", words)
+        assert not (events_copy / "p.png").exists()
+
+
+# Rule: a recording cuts its windows at its scenario's sample rates, so an event whose rates
+# (and windows, consistently) are not those of the scenario its `scenario` field records is
+# refused naming the file and the rate's field.
+def test_an_event_at_rates_its_recorded_scenario_does_not_sample_at_is_refused(events_copy):
+    from tegrasp_drake.scenario.scenario import LoadScenario
+    from tegrasp_drake.scenario.scenario_events import load_controller_events
+
+    def at_100_hz(data):
+        data["sa_rate_hz"] = 100.0
+        for name in ("sa_left", "sa_right"):
+            window = np.array(data["samples"][name][:50])
+            data["samples"][name] = (window / np.abs(window).max()).tolist()
+    for path in (events_copy / "box").glob("*.json"):
+        edit_json(path, at_100_hz)
+    edit_json(events_copy / INDEX_FILE, lambda data: [
+        entry.update(sa_rate_hz=100.0) for entry in data["events"] if entry["object"] == "box"])
+    assert load_memorized_events(events_copy, "box")["reach_load"].sa_rate_hz == 100.0
+    with pytest.raises(MemorizedEventError) as refused:
+        load_controller_events(LoadScenario(name="box"), events_copy)
+    message = one_line_of(refused.value)
+    for words in ("box/reach_load.json", "field 'sa_rate_hz' is 100 Hz",
+                  "samples at 108 Hz (tactile.sample_rate_hz)"):
+        assert words in message, message
+
+
+# Rule: a window of ones is a quiet RA window, which only format_version 3 stores; a version-2
+# file (windows as cut) holding one is refused naming the file and the channel.
+def test_a_version_2_event_with_a_quiet_ra_window_is_refused(events_copy):
+    path = events_copy / "prismatic" / "box" / "load_lift.json"
+
+    def quiet(data):
+        data["samples"]["ra_right"] = [1.0] * len(data["samples"]["ra_right"])
+    edit_json(path, quiet)
+    with pytest.raises(MemorizedEventError) as refused:
+        load_memorized_events(events_copy / "prismatic", "box")
+    message = one_line_of(refused.value)
+    for words in (str(path), "field 'samples.ra_right' is a window of ones",
+                  "format_version 2"):
+        assert words in message, message
+
+
+def test_every_committed_event_lies_within_its_recorded_run():
+    from tegrasp_drake.events.transitions import CORRECTIVE_TRANSITIONS
+    from tegrasp_drake.scenario.scenario_events import recorded_run_problem
+    root = pathlib.Path(tegrasp_drake.__file__).parent.parent
+    checked = 0
+    for index in sorted([*root.glob("events/**/index.json"),
+                         *root.glob("analysis/**/events/**/index.json"),
+                         *root.glob("analysis/*_events/**/index.json")]):
+        folder = index.parent
+        required = CORRECTIVE_TRANSITIONS if folder.name == "corrective" else ()
+        for name in sorted({entry["object"] for entry in read_index(folder)}):
+            for event in load_memorized_events(folder, name, required=required).values():
+                assert recorded_run_problem(event) is None, (folder, name, event.transition)
+                checked += 1
+    assert checked >= 100

@@ -536,3 +536,64 @@ def test_a_sweep_record_without_its_checksum_names_the_missing_field(tmp_path, m
     code, text = run_cli(["plot", "table1", "sweep", "--out", "t.png"], capfd)
     assert_one_line_error(code, text, path.name, "missing", "checksum")
     assert "not a JSON object" not in text
+
+
+# Rule: a row of Table I (one controller on one object) counts records of one memorized
+# events set; records that matched against different events (their "events" sha256 differ,
+# e.g. one sweep's records copied into another's folder) are refused by every reader of the
+# folder in one line naming two of them, their events and what to do. Records of different
+# objects or controllers differ by design and are not compared.
+def _mixed_events_folder(tmp_path):
+    from tests.fake_trials import fake_memorized_trial
+    spec = SweepSpec(objects=("box",), controllers=("memorized",), attempts=2, base_seed=650)
+    summary = run_sweep(spec, fake_memorized_trial, tmp_path, workers=1, progress=False)
+    path = record_path(tmp_path, summary.trial_ids[-1])
+    record = json.loads(path.read_text())
+    record["events"] = {"folder": "/elsewhere/events", "sha256": "0" * 64}
+    del record["checksum"]
+    record["checksum"] = _checksum(record)
+    path.write_text(json.dumps(record))
+    return summary.trial_ids[0], path
+
+
+def test_records_of_one_table_row_made_with_different_events_are_refused(tmp_path, capfd):
+    from tegrasp_drake.sweep import table1_rows, write_table1
+    from tests.analysis_script import load_analysis_script
+    first, mixed = _mixed_events_folder(tmp_path / "results")
+    words = (f"trials/{first.replace('/', '.')}.json", f"trials/{mixed.name}",
+             "(memorized on 'box') matched against different memorized events",
+             "sha256 000000000000... from /elsewhere/events",
+             "keep the records of one events set in a folder")
+    out = tmp_path / "t1.png"
+    code, text = run_cli(["plot", "table1", str(tmp_path / "results"), "--out", str(out)],
+                         capfd)
+    assert_one_line_error(code, text, *words)
+    assert not out.exists()
+    with pytest.raises(SystemExit) as refused:
+        load_analysis_script("make_table1").main([str(tmp_path / "results")])
+    assert all(w in str(refused.value) for w in words), refused.value
+    records = list(load_records(tmp_path / "results").records.values())
+    with pytest.raises(ValueError, match="table1_rows: records .* matched against different"):
+        table1_rows(records)
+    with pytest.raises(ValueError, match="matched against different memorized events"):
+        write_table1(records, tmp_path / "results")
+    assert not (tmp_path / "results" / "table1.md").exists()
+
+
+def test_records_of_different_objects_may_name_different_events(tmp_path):
+    from tegrasp_drake.sweep.records import mixed_events_problem
+    _, mixed = _mixed_events_folder(tmp_path)
+    records = list(load_records(tmp_path).records.values())
+    for record in records:
+        if record["trial_id"] == json.loads(mixed.read_text())["trial_id"]:
+            record["trial"] = dict(record["trial"], object_name="thin_cylinder")
+    assert mixed_events_problem(records) is None
+
+
+def test_no_committed_results_folder_mixes_events():
+    import pathlib
+    root = pathlib.Path(tegrasp_drake.__file__).parent.parent
+    folders = [trials.parent for trials in sorted(root.glob("analysis/**/trials"))]
+    assert len(folders) >= 50
+    for folder in folders:
+        assert load_records(folder).table_problem(folder) is None, folder
