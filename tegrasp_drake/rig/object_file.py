@@ -101,6 +101,26 @@ def check_model_file(file: str, source: str, size) -> None:
             f"'{body.name()}', so the hand has nothing to grasp; give its link a <collision>")
     _check_geometry(plant, scene_graph.model_inspector(), body, size,
                     f"{source}: field 'object.file': '{file}'")
+    _check_centre_of_mass(body, size, f"{source}: field 'object.file': '{file}'")
+
+
+def _check_centre_of_mass(body, size, named: str) -> None:
+    """ConfigError, `named` first, unless the body's centre of mass (its <inertial> pose)
+    lies within the box of object.size `size` that its collision geometry fills
+    (_check_geometry), within SIZE_TOLERANCE_M: a solid's centre of mass lies within its
+    convex hull, so one outside is a typo in the pose (metres for millimetres), which would
+    make the simulated object topple or swing in the hand as no real one does."""
+    width, depth, height = size
+    low = np.array([-depth / 2, -width / 2, 0.0]) - SIZE_TOLERANCE_M
+    high = np.array([depth / 2, width / 2, height]) + SIZE_TOLERANCE_M
+    com = np.asarray(body.default_spatial_inertia().get_com())
+    if not (np.all(com >= low) and np.all(com <= high)):
+        box = ", ".join(f"{axis} {_numbers([a * 1000, b * 1000])}"
+                        for axis, a, b in zip("xyz", low, high))
+        raise ConfigError(
+            f"{named} puts its body's centre of mass at {_numbers(com * 1000)} mm (its "
+            f"<inertial> pose, body frame), outside the object's box, {box} mm: a solid's "
+            "centre of mass lies within it; fix the <inertial> <pose>")
 
 
 def one_body_problem(plant, instances) -> str | None:

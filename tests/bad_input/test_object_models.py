@@ -507,3 +507,19 @@ def test_a_nul_in_the_object_file_is_refused_naming_the_field(tmp_path, capfd, n
         dataclasses.replace(scenario.object, name="myobj", shape="file", file="a\0b",
                             mass=0.1, friction=0.5, size=[0.04, 0.04, 0.1])
     assert "field 'file' holds a NUL" in one_line_of(refused.value)
+
+
+# Rule: a model's centre of mass (its <inertial> pose) lies within the object's box, which its
+# collision geometry fills; one 8.7 m away (metres typed for millimetres) is refused when the
+# scenario is checked, naming object.file and the pose, before anything is simulated.
+def test_a_model_whose_centre_of_mass_lies_outside_it_is_refused(tmp_path, no_simulation,
+                                                               capfd):
+    file = _write(tmp_path, '<?xml version="1.0"?><sdf version="1.9"><model name="mine">'
+                  '<link name="body"><inertial><pose>5 5 5 0 0 0</pose><mass>0.1</mass>'
+                  '<inertia><ixx>1e-4</ixx><iyy>1e-4</iyy><izz>1e-4</izz></inertia>'
+                  f'</inertial><collision name="c"><pose>0 0 0.05 0 0 0</pose>{_BOX}'
+                  '</collision></link></model></sdf>')
+    code, text = run_cli(["trial", "--controller", "open_loop", "--out", str(tmp_path / "run"),
+                          *USER_OBJECT, "--set", f"object.file={file}"], capfd)
+    assert_one_line_error(code, text, "field 'object.file'", str(file),
+                          "centre of mass at [5000, 5000, 5000] mm", "<inertial> <pose>")
