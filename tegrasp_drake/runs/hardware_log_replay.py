@@ -149,7 +149,6 @@ def _check_events_felt_on_the_runs_object(scenario, folder, events: dict, path) 
     """MemorizedEventError when the run's object's events were felt on another object than
     the one the run grasped (its logged scenario's, resolved as the run resolved it), as a
     trial's and a hardware run's events are checked (load_controller_events)."""
-    import dataclasses
     grasped = resolve_object(scenario.object, f"run log '{path}': its {RUN_INFO_CHANNEL} "
                              "scenario", loaded=True)
     check_events_object(dataclasses.replace(scenario, object=grasped), folder, events)
