@@ -305,7 +305,7 @@ def scheduler_form_problem(address: str) -> str | None:
 def scheduler_option(text: str) -> str:
     """argparse's type of --scheduler: the address as given, or a usage error (exit 2) when
     it does not parse (scheduler_form_problem); '' is left to the refusal of empty values,
-    text holding a control character to usage_parser.text_argument_problem (exit 1)."""
+    text holding a control character to usage_parser.argument_text_problem (exit 2)."""
     from tegrasp_drake.rig.typed_yaml import text_problem
     problem = scheduler_form_problem(text) if text and not text_problem(text) else None
     if problem:  # argparse puts "argument --scheduler: " before it
