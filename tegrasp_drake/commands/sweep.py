@@ -20,7 +20,7 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.files import folder_problem
+from tegrasp_drake.rig.files import error_line, folder_problem
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
@@ -373,10 +373,10 @@ def refusals_said(command: str):
     try:
         yield refusal
     except (OptionError, SchedulerLostError) as error:
-        print(f"tegrasp {command}: error: {error}", file=sys.stderr)
+        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 1
     except (ConfigError, SweepError) as error:
-        print(f"tegrasp {command}: error: {error}", file=sys.stderr)
+        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 2
     except MemorizedEventError as error:
         raise SystemExit(f"tegrasp: error: {error}") from None
@@ -488,7 +488,7 @@ def run(args) -> int:
                 try:
                     check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
                 except SweepEventsError as error:  # an event file missing or damaged: bad input, 1
-                    print(f"tegrasp sweep: error: {error}", file=sys.stderr)
+                    print(f"tegrasp sweep: error: {error_line(str(error))}", file=sys.stderr)
                     return 1
             if args.events:
                 trial_function = bound_arguments(trial_function, events_dir=args.events)
