@@ -74,8 +74,7 @@ class UsageParser(argparse.ArgumentParser):
             problem = argument_text_problem(text) if isinstance(text, str) else None
             if problem:
                 from tegrasp_drake.rig.echo import shown
-                name = (action.option_strings[0] if action.option_strings
-                        else action.metavar or action.dest)
+                name = argparse._get_action_name(action)  # as argparse's own errors name it
                 self.error(f"argument {name} {problem}, got {shown(text)}")
         return super()._get_values(action, arg_strings)
 

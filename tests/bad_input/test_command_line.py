@@ -629,6 +629,7 @@ def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, wo
     (["sweep", "--dry-run", "--workers", "2\n"], "argument --workers holds a control"),
     (["plot", "signals", "l\tog.npz"], "argument LOG|RESULTS holds a control character"),
     (["tr\x1bial"], "tegrasp: error: argument command holds a control character (0x1b"),
+    (["record-events", "--out", "e\nv"], "argument --events/--out holds a control character"),
 ])
 def test_a_control_character_in_an_argument_is_a_command_line_that_does_not_parse(
         argv, name, tmp_path, monkeypatch, capfd):
