@@ -15,7 +15,7 @@ import sys
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
                                                write_result)
-from tegrasp_drake.rig.files import (free_space_problem, interruptions_deferred,
+from tegrasp_drake.rig.files import (error_line, free_space_problem, interruptions_deferred,
                                      output_file_problem)
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.rig.echo import shorten, shown
@@ -372,7 +372,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
         # a device's port is a field of the hardware config: the line names where it is
         config_file = args.config or "the scenario's station"
         where = f"{config_file}: " if isinstance(e, DeviceAbsentError) else ""
-        print(f"tegrasp: error: {where}{e}", file=sys.stderr, flush=True)
+        print(f"tegrasp: error: {error_line(f'{where}{e}')}", file=sys.stderr, flush=True)
         return 1
     except BaseException:
         kept, replaced = keep_incomplete_log(staged, log)
@@ -420,7 +420,8 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
           f"{' (the log stopped)' if result.log_fault else ''}; {logged_words}, "
           f"result {result_path}", flush=True)
     if result.log_fault:
-        print(f"tegrasp: error: {result.log_fault}; the run was stopped", file=sys.stderr,
+        print(f"tegrasp: error: {error_line(str(result.log_fault))}; the run was stopped",
+              file=sys.stderr,
               flush=True)
     if keep_earlier:
         replaced_words = ("; they replace the earlier failed run's "

@@ -160,6 +160,18 @@ class _ScriptParser(UsageParser):
     def refuse(self, message):
         raise SystemExit(f"{self._script}: error: {message}")
 
+    def _get_values(self, action, arg_strings):
+        """argparse's values, an output given as '' (an unset shell variable) refused as a
+        command line that does not parse, naming it, as `tegrasp`'s are (its type would
+        make '' the current folder, '.')."""
+        outputs = {destination: kind for destination, kind, _ in self._outputs}
+        if action.dest in outputs and "" in arg_strings:
+            name = action.option_strings[0] if action.option_strings else action.dest
+            what = {"figure": "a figure file (.png, .pdf or .svg)",
+                    "folder": "a folder to write in"}.get(outputs[action.dest], "a file to write")
+            self.error(f"{name} '' is empty; give {what}")
+        return super()._get_values(action, arg_strings)
+
     def error(self, message):
         self.exit(EXIT_USAGE, f"{self._script}: error: {error_line(message)}; "
                               f"{self.prog} --help shows the usage\n")

@@ -20,7 +20,7 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.files import folder_problem
+from tegrasp_drake.rig.files import error_line, folder_problem
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
@@ -305,7 +305,7 @@ def scheduler_form_problem(address: str) -> str | None:
 def scheduler_option(text: str) -> str:
     """argparse's type of --scheduler: the address as given, or a usage error (exit 2) when
     it does not parse (scheduler_form_problem); '' is left to the refusal of empty values,
-    text holding a control character to usage_parser.text_argument_problem (exit 1)."""
+    text holding a control character to usage_parser.argument_text_problem (exit 2)."""
     from tegrasp_drake.rig.typed_yaml import text_problem
     problem = scheduler_form_problem(text) if text and not text_problem(text) else None
     if problem:  # argparse puts "argument --scheduler: " before it
@@ -373,10 +373,10 @@ def refusals_said(command: str):
     try:
         yield refusal
     except (OptionError, SchedulerLostError) as error:
-        print(f"tegrasp {command}: error: {error}", file=sys.stderr)
+        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 1
     except (ConfigError, SweepError) as error:
-        print(f"tegrasp {command}: error: {error}", file=sys.stderr)
+        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 2
     except MemorizedEventError as error:
         raise SystemExit(f"tegrasp: error: {error}") from None
@@ -488,7 +488,7 @@ def run(args) -> int:
                 try:
                     check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
                 except SweepEventsError as error:  # an event file missing or damaged: bad input, 1
-                    print(f"tegrasp sweep: error: {error}", file=sys.stderr)
+                    print(f"tegrasp sweep: error: {error_line(str(error))}", file=sys.stderr)
                     return 1
             if args.events:
                 trial_function = bound_arguments(trial_function, events_dir=args.events)

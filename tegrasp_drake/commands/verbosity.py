@@ -12,7 +12,8 @@ LOG_FORMAT = "%(levelname)s %(name)s: %(message)s"
 
 class CommandLogFormatter(logging.Formatter):
     """LOG_FORMAT, except that the package's warnings read as its other warnings do, one
-    line `tegrasp: warning: ...`: what the user is told, not a log record."""
+    line `tegrasp: warning: ...` (files.error_line: a name holding a control character is
+    shown escaped): what the user is told, not a log record."""
 
     def __init__(self):
         super().__init__(LOG_FORMAT)
@@ -20,7 +21,8 @@ class CommandLogFormatter(logging.Formatter):
     def format(self, record):
         ours = record.name == PACKAGE_LOGGER or record.name.startswith(PACKAGE_LOGGER + ".")
         if ours and record.levelno == logging.WARNING and not record.exc_info:
-            return f"tegrasp: warning: {record.getMessage()}"
+            from tegrasp_drake.rig.files import error_line  # a file's name, escaped and cut
+            return f"tegrasp: warning: {error_line(record.getMessage())}"
         return super().format(record)
 
 

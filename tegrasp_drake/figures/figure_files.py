@@ -67,6 +67,10 @@ def figure_replace_problem(path, *, overwrite: bool = True) -> str | None:
         return (f"cannot be read to check what it is ({error.strerror or error}); give another "
                 "file name")
     figure_format = path.suffix.lstrip(".").lower()
+    if not head:
+        return (f"exists and is empty (0 bytes), not a .{figure_format} figure: a file there "
+                f"is replaced only when it holds one (starting as the {figure_format.upper()} "
+                "format does); give another file name, or remove it yourself")
     if not head.startswith(FIGURE_STARTS[figure_format]):
         return (f"exists and is not a .{figure_format} figure (its first bytes are not those of "
                 f"the {figure_format.upper()} format); give another file name, or remove it "

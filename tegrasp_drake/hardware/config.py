@@ -174,8 +174,8 @@ def lcm_url_form_problem(url: str) -> str | None:
 def lcm_url_option(text: str) -> str:
     """argparse's type of --lcm-url: the URL as given, or a usage error (exit 2) when it does
     not parse (lcm_url_form_problem). The default LCM_DEFAULT_URL set is the environment's,
-    not the command line's: checked later, naming the variable (lcm_url_origin); so is text
-    holding a control character (usage_parser.text_argument_problem names it, exit 1)."""
+    not the command line's: checked later, naming the variable (lcm_url_origin); a control
+    character is refused before (usage_parser: exit 2 on the command line, 1 in a default)."""
     import argparse
     from tegrasp_drake.rig.typed_yaml import text_problem
     given = lcm_url_origin(text, "--lcm-url") == "--lcm-url" and not text_problem(text)

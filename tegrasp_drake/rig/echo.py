@@ -13,10 +13,12 @@ ECHO_CHARS = 80
 
 
 def shorten(text: str, limit: int = ECHO_CHARS) -> str:
-    """`text` cut to about `limit` characters, saying how long it was."""
+    """`text` cut to about `limit` characters, its start and its end kept (a path's folder
+    and file name), saying how long it was."""
     if len(text) <= limit:
         return text
-    return f"{text[:limit]}... ({len(text)} characters)"
+    tail = limit * 3 // 8
+    return f"{text[:limit - tail]}...{text[len(text) - tail:]} ({len(text)} characters)"
 
 
 # A byte os.fsdecode could not decode, held as a surrogate (\udc80-\udcff): raw, and as repr

@@ -678,8 +678,9 @@ def one_line(text: str) -> str:
         _ESCAPES.get(ch) or ch.encode("unicode_escape").decode("ascii") for ch in text)
 
 
-# A value pasted by mistake must not make an error hundreds of kB long: an error line is at
-# most MAX_ERROR_CHARS, its words longer than twice echo.ECHO_CHARS cut to about ECHO_CHARS.
+# A value pasted by mistake must not make an error hundreds of kB long: an error line's words
+# longer than twice echo.ECHO_CHARS (a path, a value) are cut to about ECHO_CHARS, their start
+# and end kept, and the line is at most MAX_ERROR_CHARS.
 MAX_ERROR_CHARS = 1000
 
 
@@ -687,8 +688,6 @@ def error_line(text: str) -> str:
     """`text` as an error's one line (one_line), bounded: every error the user reads."""
     from tegrasp_drake.rig.echo import ECHO_CHARS, shorten
     message = one_line(text)
-    if len(message) <= MAX_ERROR_CHARS:
-        return message
     message = " ".join(shorten(word) if len(word) > 2 * ECHO_CHARS else word
                        for word in message.split(" "))
     if len(message) <= MAX_ERROR_CHARS:

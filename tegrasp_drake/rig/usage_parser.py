@@ -1,7 +1,7 @@
 """The argument parser of every command line in the package (`tegrasp`, its subcommands and
 the `python -m` docs commands): a command line that does not parse is refused in one line
-(docs/user-guide.md, "Exit codes"), never argparse's usage block; a text value holding a
-control character is refused naming its option, as a config's text field is."""
+(docs/user-guide.md, "Exit codes"), never argparse's usage block; an argument holding a
+control character is a command line that does not parse (argument_text_problem)."""
 
 import argparse
 import os
@@ -15,6 +15,26 @@ EXIT_BAD_INPUT = 1  # a command line that parses, with a value that cannot be us
 # `--attempts -inf` is refused by the option's own check naming the value, never as "expected
 # one argument". An option the parser has (`--attempts --dry-run`, `-v`) is still an option.
 VALUE_LIKE_A_NUMBER = re.compile(r"^-(?:\d|\.|inf|nan)", re.IGNORECASE)
+
+# Every control character (C0, DEL, C1): in an argument, a line break would split the one-line
+# error that echoes it, an escape drive the terminal, a NUL be refused deep in a check.
+CONTROL_CHARACTER = re.compile("[\x00-\x1f\x7f-\x9f]")
+_CONTROL_NAMES = {0x00: "NUL", 0x09: "tab", 0x0a: "line break", 0x0d: "carriage return",
+                  0x1b: "escape", 0x7f: "DEL"}
+
+
+def argument_text_problem(text: str) -> str | None:
+    """Why `text`, a command-line argument, cannot be one, in words that follow "argument
+    --out ": the first control character it holds, by its code and its byte (counted from
+    1, as the shell's text is UTF-8), or None."""
+    found = CONTROL_CHARACTER.search(text)
+    if found is None:
+        return None
+    code = ord(found.group())
+    byte = len(os.fsencode(text[:found.start()])) + 1
+    name = f", {_CONTROL_NAMES[code]}" if code in _CONTROL_NAMES else ""
+    return (f"holds a control character (0x{code:02x}{name}) at byte {byte}; command-line "
+            "text takes printable characters only: remove it")
 
 
 class UsageParser(argparse.ArgumentParser):
@@ -30,9 +50,9 @@ class UsageParser(argparse.ArgumentParser):
         self.register("action", "store", _StoreOnce)
 
     def parse_known_args(self, args=None, namespace=None):
-        """argparse's parse_known_args, a text value of this parser's arguments that holds
-        a control character refused (text_argument_problem); a subcommand's parser checks
-        its own arguments."""
+        """argparse's parse_known_args, a text default of this parser's arguments that holds
+        a control character (one from the environment: LCM_DEFAULT_URL) refused as bad input
+        (text_argument_problem); the command line's own text is refused by _get_values."""
         self._given_options = {}  # _StoreOnce's record of this parse's options
         parsed, extras = super().parse_known_args(args, namespace)
         problem = text_argument_problem(self, parsed)
@@ -44,6 +64,19 @@ class UsageParser(argparse.ArgumentParser):
         """Ends a command line that parses, whose value `message` says cannot be used: one
         line on stderr and EXIT_BAD_INPUT."""
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
+
+    def _get_values(self, action, arg_strings):
+        """argparse's values of `action` from its arguments' text, an argument holding a
+        control character refused first (argument_text_problem), each where the parser it
+        belongs to takes it: a subcommand's name here, its arguments by its own parser."""
+        given = arg_strings[:1] if action.nargs == argparse.PARSER else arg_strings
+        for text in given:
+            problem = argument_text_problem(text) if isinstance(text, str) else None
+            if problem:
+                from tegrasp_drake.rig.echo import shown
+                name = argparse._get_action_name(action)  # as argparse's own errors name it
+                self.error(f"argument {name} {problem}, got {shown(text)}")
+        return super()._get_values(action, arg_strings)
 
     def error(self, message):
         from tegrasp_drake.rig.files import error_line

@@ -361,6 +361,36 @@ def _times_problem(meta: dict, span: tuple[float, float]) -> str | None:
     return None
 
 
+def _hit_problem(meta: dict, arrays: dict, scenario, span: tuple[float, float]) -> str | None:
+    """What is wrong with the log's hit marker (meta 'events' 'hit', the figures' "hit" line)
+    against its scenario's hit (disturbance.hit_time_s; negative: none) and its samples, or
+    None: a hit at or after the log's start; 'events' marks the scenario's hit, and only it,
+    when it came by the last slow sample (runs/trial.physical_event_times), none otherwise (a
+    hit after the log's end is a trial that ended first: Failed or Done)."""
+    from tegrasp_drake.scenario.trial_result import HIT_EVENT
+    if scenario is None:
+        return None
+    hit = scenario.disturbance.hit_time_s
+    if 0.0 <= hit < span[0]:
+        return (f"meta 'scenario' field 'disturbance.hit_time_s' ({number_text(hit)} s) lies "
+                f"before the log's start, {number_text(span[0])} s (a trial logs from 0 s)")
+    events = meta.get("events")
+    if not isinstance(events, dict):
+        return None  # a log without events (an ideal grasp's) marks no hit
+    marked = events.get(HIT_EVENT)
+    last = float(np.asarray(arrays["t_slow"])[-1])
+    if marked is not None and hit < 0.0:
+        return (f"meta 'events' marks a 'hit' at {number_text(marked)} s, but its 'scenario' "
+                f"has none (disturbance.hit_time_s {number_text(hit)}: negative, no hit)")
+    if marked is not None and abs(marked - hit) > _SAME_TIME_S:
+        return (f"meta 'events' marks the 'hit' at {number_text(marked)} s, but its "
+                f"'scenario' hits at {number_text(hit)} s (disturbance.hit_time_s)")
+    if marked is None and 0.0 <= hit <= last:
+        return (f"meta 'events' marks no 'hit', but its 'scenario' hits at {number_text(hit)} "
+                f"s (disturbance.hit_time_s), within the log (to {number_text(last)} s)")
+    return None
+
+
 # How far a phase start may be from the transition it records [s]: the two are one float
 # (runs/trial.py copies it), so only rounding, far below the 5 ms controller period, is let by.
 _SAME_TIME_S = 1e-9
@@ -524,7 +554,8 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     if problem:
         return problem if problem.startswith("meta") else f"meta {problem}"
     problem = (_sim_time_problem(meta, arrays) or _timeline_problem(transitions, span)
-               or _times_problem(meta, span) or _phase_starts_problem(meta))
+               or _times_problem(meta, span) or _hit_problem(meta, arrays, scenario, span)
+               or _phase_starts_problem(meta))
     if problem:
         return problem
     if "result" in meta and "phase_starts" not in meta:  # run_trial writes both

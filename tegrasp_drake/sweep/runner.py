@@ -250,11 +250,7 @@ def run_sweep(spec: SweepSpec, trial_function: Callable,
         events = _check_records_fit(trials, trial_function, loaded.records, out_dir)
         pending = [trial for trial in trials
                    if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
-        unwritable = unwritable_records(out_dir, [trial["trial_id"] for trial in pending])
-        if unwritable:
-            path, problem = unwritable[0]
-            more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
-            raise SweepError(f"the record {path} {problem}{more}; nothing was run")
+        _check_records_writable(out_dir, pending)
         logger.info(f"sweep: {count_text(len(trials), 'trial')}, "
                     f"{count_text(len(loaded.records), 'record')} read from "
                     f"{out_dir}, {len(pending)} to run")
@@ -333,7 +329,23 @@ def check_sweep_folder(spec: SweepSpec, trial_function: Callable, out_dir
         _check_records_fit(trials, trial_function, loaded.records, out_dir)
     pending = [trial for trial in trials
                if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
+    _check_records_writable(out_dir, pending, set_aside=loaded.corrupt)
     return len(pending), dict(loaded.corrupt), in_use
+
+
+def _check_records_writable(out_dir, pending, set_aside=()) -> None:
+    """SweepError naming the first record of the `pending` trials that could not be written
+    (unwritable_records: a folder in its place, `trials` not a folder), before any trial runs:
+    run_sweep's check, and check_sweep_folder's for a dry run. `set_aside`: the corrupt records
+    a run moves away first (not there once it writes)."""
+    set_aside = {Path(path) for path in set_aside if _set_aside(Path(path))}
+    unwritable = [(path, problem) for path, problem in
+                  unwritable_records(out_dir, [trial["trial_id"] for trial in pending])
+                  if Path(path) not in set_aside]
+    if unwritable:
+        path, problem = unwritable[0]
+        more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
+        raise SweepError(f"the record {path} {problem}{more}; nothing was run")
 
 
 def _check_records_fit(trials, trial_function, records, out_dir) -> dict[str, dict | None]:
@@ -732,7 +744,7 @@ def _keep_corrupt_records_aside(corrupt: dict, trial_ids=None) -> None:
     is (the entry, not what it points to); a folder there is left for the write check, which
     refuses the sweep before it runs anything."""
     for path, reason in corrupt.items():
-        if path.is_dir() and not path.is_symlink():
+        if not _set_aside(path):
             continue
         kept = path.with_name(f"{path.name}.corrupt-{os.getpid()}")
         os.replace(path, kept)
@@ -744,6 +756,12 @@ def _keep_corrupt_records_aside(corrupt: dict, trial_ids=None) -> None:
             logger.warning(f"sweep: {path}: {reason}; kept as {kept.name}; its trial, "
                            f"{trial_id}, is not in this sweep: a sweep of the spec that has it "
                            "runs it again")
+
+
+def _set_aside(path: Path) -> bool:
+    """Whether _keep_corrupt_records_aside moves the corrupt record `path` away: all but a
+    folder, which no record can replace."""
+    return not (path.is_dir() and not path.is_symlink())
 
 
 def summary_text(summary: SweepSummary) -> str:

@@ -607,33 +607,62 @@ def test_an_option_value_out_of_its_range_is_bad_input_on_every_command(argv, wo
     assert "--help" not in text, text
 
 
-# Rule: a text value on the command line (an option's, a positional's, one of a repeated
-# option's) holding a control character is bad input, exit 1, in one line naming the option,
-# whichever command takes it, as a config's text field is: an escape would drive the terminal
-# the value is echoed on.
+# Rule: a command-line argument (an option's value, a positional, one of a repeated option's,
+# a subcommand's name) holding a control character, a tab or line break too, is a command line
+# that does not parse, exit 2, in one line naming the argument, the character's code and its
+# byte, whichever command or analysis script takes it: a line break would split the one-line
+# error, an escape drive the terminal the value is echoed on.
 @pytest.mark.parametrize("argv, name", [
     (["emulate", "jaco", "--scheduling", "normal", "--lcm-url",
-      "udpm://239.255.76.67:7667\x07"], "--lcm-url holds a control character (character 0x07)"),
+      "udpm://239.255.76.67:7667\x07"], "argument --lcm-url holds a control character (0x07)"
+                                         " at byte 26"),
     (["emulate", "jaco", "--scheduling", "normal", "--lcm-url",
-      "udpm://239.255.76.67:7667\x1b[31m"], "--lcm-url holds an escape (character 0x1b)"),
-    (["replay", "run\x1b[2J.lcmlog"], "LOG holds an escape"),
-    (["sweep", "--dry-run", "--out", "sw\x00"], "--out holds a NUL"),
-    (["trial", "--set", "object.name=\x7f"], "--set holds a DEL"),
+      "udpm://239.255.76.67:7667\x1b[31m"], "--lcm-url holds a control character (0x1b, "
+                                            "escape) at byte 26"),
+    (["replay", "run\x1b[2J.lcmlog"], "argument LOG holds a control character (0x1b"),
+    (["sweep", "--dry-run", "--out", "sw\x00"], "--out holds a control character (0x00, NUL)"),
+    (["trial", "--set", "object.name=\x7f"], "--set holds a control character (0x7f, DEL)"),
+    (["trial", "--out", "ab\ncd"], "argument --out holds a control character (0x0a, line "
+                                    "break) at byte 3"),
+    (["trial", "--out=a\tb"], "argument --out holds a control character (0x09, tab) at byte 2"),
+    (["trial", "--out", "\u00e9\r"], "(0x0d, carriage return) at byte 3"),
+    (["sweep", "--dry-run", "--workers", "2\n"], "argument --workers holds a control"),
+    (["plot", "signals", "l\tog.npz"], "argument LOG|RESULTS holds a control character"),
+    (["tr\x1bial"], "tegrasp: error: argument command holds a control character (0x1b"),
+    (["record-events", "--out", "e\nv"], "argument --events/--out holds a control character"),
 ])
-def test_a_control_character_in_an_option_is_refused_naming_it(argv, name, tmp_path,
-                                                                monkeypatch, capfd):
-    text = _refused_in(tmp_path, monkeypatch, capfd, argv, 1, name,
-                       "printable characters only; remove it")
-    assert "\x1b" not in text and "\x07" not in text  # echoed escaped, never raw
+def test_a_control_character_in_an_argument_is_a_command_line_that_does_not_parse(
+        argv, name, tmp_path, monkeypatch, capfd):
+    text = _refused_in(tmp_path, monkeypatch, capfd, argv, 2, name,
+                       "printable characters only: remove it")
+    assert not any(c in text[:-1] for c in "\x1b\x07\x00\x7f\t\r\n"), repr(text)
+    assert list(tmp_path.iterdir()) == [], "a refused command line wrote nothing"
 
 
-def test_a_control_character_in_an_analysis_script_option_is_refused_naming_it(capsys):
+def test_a_control_character_in_an_analysis_script_argument_is_refused_naming_it(capsys):
     from tegrasp_drake.commands.script_output import script_parser
     parser = script_parser("some_script", "Does something.")
     parser.add_argument("--label")
-    with pytest.raises(SystemExit) as exit_:
-        parser.parse_args(["--label", "a\x1bb"])
-    assert str(exit_.value.code).startswith("some_script: error: --label holds an escape")
+    parser.add_argument("results")
+    for argv, name in ((["--label", "a\x1bb", "r"], "--label"), (["a\nb"], "results")):
+        with pytest.raises(SystemExit) as exit_:
+            parser.parse_args(argv)
+        assert exit_.value.code == 2
+        text = capsys.readouterr().err
+        assert text.startswith(f"some_script: error: argument {name} holds a control "
+                               "character (0x"), text
+        assert text.count("\n") == 1 and "\x1b" not in text, repr(text)
+
+
+# Rule: a text default that holds a control character, one the environment set
+# (LCM_DEFAULT_URL), is bad input, exit 1, naming the option it is the default of.
+def test_a_control_character_in_an_environment_default_is_bad_input(monkeypatch, capfd):
+    from tegrasp_drake.commands import emulate
+    monkeypatch.setattr(emulate, "DEFAULT_LCM_URL", "udpm://239.255.76.67:7667\x1b[2J")
+    code, text = run_cli(["emulate", "jaco", "--scheduling", "normal"], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "--lcm-url holds an escape (character 0x1b)")
+    assert "\x1b[" not in text
 
 
 # Rule: a --set that is no KEY=VALUE with KEY a dotted field name (an empty key or name, no

@@ -7,6 +7,7 @@ Verbose logging (-v, -vv) says what each command read, ran and wrote, on stderr.
 import errno
 import io
 import os
+import pathlib
 import subprocess
 import sys
 import types
@@ -342,3 +343,23 @@ def test_the_viewer_closes_when_there_is_no_standard_input_to_wait_on(monkeypatc
     monkeypatch.setattr(sys, "stdin", None if stdin is None else HungUp())
     wait_for_viewer(types.SimpleNamespace(meshcat=True), _Viewer())
     assert capsys.readouterr().err.count("\n") == 1
+
+
+# Rule: a warning that names a user's file or value holding a control character (a file
+# named with an escape sequence in a sweep's trials folder) shows it escaped, in one line:
+# never a raw escape that drives the terminal, never a line break that splits the warning.
+def test_a_warning_naming_a_file_with_control_characters_shows_them_escaped(tmp_path):
+    from tests.bad_input.probes import tegrasp_in_child_process
+    out = tmp_path / "out"
+    out.joinpath("trials").mkdir(parents=True)
+    out.joinpath("trials", "mine\x1b[31m\nred.json").write_text("x")
+    done = tegrasp_in_child_process(
+        ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
+         "--out", str(out), "--workers", "1", "--no-progress",
+         "--trial-function", "tests.fake_trials:fake_trial"],
+        PYTHONPATH=str(pathlib.Path(__file__).resolve().parents[2]))
+    assert done.returncode == 0, done.stderr
+    warnings = [line for line in done.stderr.splitlines() if "warning" in line]
+    assert len(warnings) == 1, done.stderr
+    assert "mine\\x1b[31m\\nred.json" in warnings[0], done.stderr
+    assert "\x1b" not in done.stderr, repr(done.stderr)

@@ -276,3 +276,85 @@ def test_a_finished_sweep_rerun_on_a_full_disk_is_one_line_and_keeps_its_reports
     assert code == 1, text
     assert "No space left on device" in text and "internal error" not in text
     assert {report: report.read_bytes() for report in reports} == before
+
+
+# Rule: a long path a user gave (hundreds or thousands of characters) is cut in an error line
+# to about 80 characters, its start and its end kept, saying how long it was; the line stays
+# short, whichever command or analysis script says it.
+@pytest.mark.parametrize("argv_of", [
+    lambda path: ["sweep", "--dry-run", "--out", path],
+    lambda path: ["trial", "--out", path],
+    lambda path: ["plot", "signals", path + ".npz"],
+    lambda path: ["replay", path + ".lcmlog"],
+    lambda path: ["trial", "--scenario", path + ".yaml"],
+], ids=["sweep-out", "trial-out", "plot-log", "replay-log", "trial-scenario"])
+def test_a_long_path_is_cut_keeping_its_start_and_end(argv_of, tmp_path, monkeypatch, capfd):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "afile").write_text("x")
+    path = "afile/" + "/".join(f"{k:02d}" + "d" * 150 for k in range(20)) + "/the_end"
+    argv = argv_of(path)
+    code, text = run_cli(argv, capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "afile/00ddd", "d/the_end", "characters)")
+    assert len(text) < 300, text
+
+
+def test_an_analysis_script_cuts_a_long_path_keeping_its_start_and_end(tmp_path, capsys):
+    from tegrasp_drake.commands.script_output import run_script, script_parser
+    parser = script_parser("some_script", "Does something.")
+    parser.add_input("results", what="results folder",
+                     advice="give the --out folder of `tegrasp sweep`")
+    path = f"{tmp_path}/" + ("x" * 150 + "/") * 4 + "the_end"
+    try:
+        code = run_script(lambda argv: parser.parse_args(argv) and 0, "some_script", [path])
+    except SystemExit as exit_:
+        code = exit_.code
+    text = (code if isinstance(code, str) else "") + capsys.readouterr().err
+    assert text.count("\n") <= 1 and len(text) < 300, text
+    assert str(tmp_path)[:20] in text and "x/the_end" in text, text
+
+
+# Rule: an empty file (0 bytes) where a figure goes is refused saying it is empty and what a
+# file there must hold to be replaced (a figure of its suffix's format), by `tegrasp plot` and
+# the analysis scripts alike; an output given as '' is refused naming it, not as '.'.
+@pytest.mark.parametrize("suffix", ["png", "pdf", "svg"])
+def test_an_empty_file_where_a_figure_goes_is_named_empty(suffix, tmp_path, capsys):
+    from tests.analysis_script import load_analysis_script
+    figure = tmp_path / f"maps.{suffix}"
+    figure.write_bytes(b"")
+    make_success_maps = load_analysis_script("make_success_maps")
+    results = str(pathlib.Path(tegrasp_drake.__file__).parents[1] / "analysis" / "results_seed0")
+    for overwrite in ([], ["--overwrite"]):
+        code, text = _script_exit(make_success_maps, [results, "--file", str(figure),
+                                                      *overwrite], capsys)
+        assert code == 1, text
+        assert f"maps.{suffix} exists and is empty (0 bytes), not a .{suffix} figure" in text
+        assert "first bytes" not in text and text.count("\n") == 1, text
+    assert figure.read_bytes() == b""
+
+
+def test_plot_names_an_empty_figure_file_empty(tmp_path, capfd):
+    figure = tmp_path / "fig.png"
+    figure.write_bytes(b"")
+    code, text = run_cli(["plot", "events", "--out", str(figure), "--overwrite"], capfd)
+    assert_one_line_error(code, text, "exists and is empty (0 bytes), not a .png figure")
+    assert code == 1
+
+
+def test_an_analysis_script_output_given_empty_is_named(capsys):
+    from tests.analysis_script import load_analysis_script
+    make_success_maps = load_analysis_script("make_success_maps")
+    code, text = _script_exit(make_success_maps, ["results", "--file", ""], capsys)
+    assert code == 2, text
+    assert text.startswith("make_success_maps: error: --file '' is empty; give a figure file"
+                           " (.png, .pdf or .svg)"), text
+
+
+def _script_exit(script, argv, capsys) -> tuple[int, str]:
+    """(exit code, its error line) of the analysis script module `script` run on `argv`."""
+    try:
+        code, message = script.run_script(script.main, script.__name__, argv), ""
+    except SystemExit as exit_:
+        code, message = ((1, exit_.code + "\n") if isinstance(exit_.code, str)
+                         else (exit_.code, ""))
+    return code, message + capsys.readouterr().err

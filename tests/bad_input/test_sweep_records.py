@@ -51,6 +51,45 @@ def test_a_folder_in_place_of_a_sweep_record_is_refused_before_the_trial_runs(tm
     assert (record / "mine.txt").read_text() == "kept"
 
 
+# Rule: `tegrasp sweep --dry-run` refuses an --out the real run refuses, by the same check
+# and in the same words: a folder in a record's place, a `trials` that is no folder (a file, a
+# dangling link); a corrupt record file the run sets aside is no refusal.
+@pytest.mark.parametrize("make, words", [
+    (lambda trials, record: (record.mkdir(parents=True), (record / "mine.txt").write_text("x")),
+     "is a folder where a file belongs"),
+    (lambda trials, record: trials.write_text("x"), "trials is not a folder"),
+    (lambda trials, record: trials.symlink_to(trials.parent / "gone"), "trials is not a folder"),
+])
+def test_a_dry_run_refuses_the_record_places_the_run_refuses(make, words, tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0]]\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    trial_id = expand_trials(SweepSpec(objects=("box",), controllers=("open_loop",),
+                                       attempts=1, grid=((0.0, 0.0),)))[0].trial_id
+    make(out / "trials", record_path(out, trial_id))
+    argv = ["sweep", "--spec", str(spec), "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    dry = run_cli([*argv, "--dry-run"], capfd)
+    real = run_cli(argv, capfd)
+    assert dry[0] == real[0] == 2, (dry, real)
+    assert_one_line_error(dry[0], dry[1], words, "nothing was run")
+    assert dry[1] == real[1]
+
+
+def test_a_dry_run_plans_over_a_corrupt_record_the_run_sets_aside(tmp_path, capfd):
+    out = tmp_path / "out"
+    trial_id = expand_trials(SweepSpec(objects=("box",), controllers=("open_loop",),
+                                       attempts=1, grid=((0.0, 0.0),)))[0].trial_id
+    record_path(out, trial_id).parent.mkdir(parents=True)
+    record_path(out, trial_id).write_text("{")
+    code, text = run_cli(["sweep", "--objects", "box", "--controllers", "open_loop",
+                          "--attempts", "1", "--out", str(out), "--dry-run"], capfd)
+    assert code == 0, text
+    assert record_path(out, trial_id).read_text() == "{"
+
+
 def test_record_result_refuses_what_is_not_a_trial_record():
     from tegrasp_drake.sweep.records import record_result
     with pytest.raises(ValueError, match="argument 'record' is not a sweep record .*got the "

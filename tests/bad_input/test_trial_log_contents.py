@@ -451,3 +451,50 @@ def test_channels_that_disagree_with_the_taxels_or_accelerations_are_refused(tmp
     log_refusal(_varying_log(tmp_path, **spoilt), expected)
     log_refusal(_varying_log(tmp_path, **spoilt), "the taxels or the channels were changed"
                 if change != "pads swapped" else "the accelerations or the channels were changed")
+
+
+# Rule: a trial log's hit marker (meta 'events' 'hit', the figures' "hit" line) is its
+# scenario's hit (disturbance.hit_time_s), present when the hit came within the log and only
+# then, and no scenario hit lies before the log's first sample; a marker that disagrees is
+# refused naming the file and the field, by the reader every figure reads through. A hit
+# after the log's end is a trial that ended first, and is read.
+_HIT_SCENARIO = "random_seed: 600\nobject:\n  name: box\ndisturbance:\n  hit_time_s: {}\n"
+_LATE = {"t_sa": 1.0 + np.arange(11) / 108.0, "t_ra": np.linspace(1.0, 1.1, 101),
+         "t_slow": np.linspace(1.0, 1.1, 11)}
+
+
+@pytest.mark.parametrize("meta, arrays, expected", [
+    ({"scenario": _HIT_SCENARIO.format(0.5)}, _LATE,
+     "meta 'scenario' field 'disturbance.hit_time_s' (0.5 s) lies before the log's start, 1 s"),
+    ({"scenario": _HIT_SCENARIO.format(-1.0), "events": {"hit": 0.05}}, {},
+     "meta 'events' marks a 'hit' at 0.05 s, but its 'scenario' has none"),
+    ({"scenario": _HIT_SCENARIO.format(0.02), "events": {"hit": 0.05}}, {},
+     "meta 'events' marks the 'hit' at 0.05 s, but its 'scenario' hits at 0.02 s"),
+    ({"scenario": _HIT_SCENARIO.format(0.02), "events": {"reach_load": None}}, {},
+     "meta 'events' marks no 'hit', but its 'scenario' hits at 0.02 s"),
+    ({"scenario": _HIT_SCENARIO.format(0.02), "events": {"hit": 5.0}}, {},
+     "meta 'events' time of 'hit' (5 s) lies outside the log's time span"),
+    ({"scenario": _HIT_SCENARIO.format(0.02), "events": {"hit": -0.05}}, {},
+     "meta 'events' time of 'hit' (-0.05 s) lies outside the log's time span"),
+    ({"scenario": _HIT_SCENARIO.format(".nan")}, {},
+     "field 'disturbance.hit_time_s' must be a finite number"),
+], ids=["scenario-hit-before-start", "marker-without-hit", "marker-elsewhere", "marker-missing",
+        "marker-after-end", "marker-before-start", "nan"])
+def test_a_hit_marker_that_disagrees_with_the_log_is_refused(meta, arrays, expected, tmp_path,
+                                                              capfd):
+    assert expected in refused_log(tmp_path, meta, **arrays)
+    path = trial_log_with(tmp_path / "hit.npz", meta, **arrays)
+    code, text = run_cli(["plot", "avoid", str(path), "--out", str(tmp_path / "o.png")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, str(path), expected)
+    assert not (tmp_path / "o.png").exists()
+
+
+@pytest.mark.parametrize("meta", [
+    {"scenario": _HIT_SCENARIO.format(0.02), "events": {"hit": 0.02}},
+    {"scenario": _HIT_SCENARIO.format(7.0), "events": {"reach_load": None}},
+    {"scenario": _HIT_SCENARIO.format(-1.0), "events": {"reach_load": None}},
+], ids=["marked", "after-the-end", "no-hit"])
+def test_a_hit_marker_that_agrees_with_the_log_is_read(meta, tmp_path):
+    path = trial_log_with(tmp_path / "trial.npz", meta)
+    assert load_trial_log(path).meta["events"] == meta["events"]

@@ -2,7 +2,7 @@ import argparse
 
 import pytest
 
-from tegrasp_drake.rig.echo import ECHO_CHARS, shown
+from tegrasp_drake.rig.echo import ECHO_CHARS, shorten, shown
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.number_text import number_option
 
@@ -20,7 +20,15 @@ def test_integer_and_number_options_echo_a_long_text_alike():
 
 def test_a_text_is_echoed_quoted_and_cut():
     assert shown("abc") == "'abc'"
-    assert shown("a" * 1000) == repr("a" * ECHO_CHARS + "... (1000 characters)")
+    text = "a" * 500 + "b" * 500
+    assert shown(text) == repr("a" * 50 + "..." + "b" * 30 + " (1000 characters)")
+
+
+def test_a_long_path_keeps_its_start_and_its_end():
+    path = "/home/me/" + "x" * 300 + "/trial.npz"
+    cut = shorten(path)
+    assert cut.startswith("/home/me/x") and cut.endswith("x/trial.npz (319 characters)"), cut
+    assert len(cut) < ECHO_CHARS + 30
 
 
 def test_a_number_typed_is_echoed_as_typed():
@@ -37,7 +45,8 @@ class _Unwritable:
     (10 ** 5000, "<an integer of 5001 digits>"),
     ([10 ** 5000], "<a list that cannot be written as text>"),
     (_Unwritable(), "<a _Unwritable that cannot be written as text>"),
-    (b"\xff" * 200, repr(b"\xff" * 200)[:ECHO_CHARS] + "... (803 characters)"),
+    (b"\xff" * 200, repr(b"\xff" * 200)[:50] + "..." + repr(b"\xff" * 200)[-30:]
+     + " (803 characters)"),
 ], ids=["huge integer", "list of a huge integer", "repr raises", "bytes"])
 def test_an_echo_never_raises(value, expected):
     assert shown(value) == expected
