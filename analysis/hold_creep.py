@@ -33,8 +33,7 @@ import numpy as np
 from tegrasp_drake.commands.script_output import (SWEEP_LOGS_ADVICE, SWEEP_RESULTS_ADVICE,
                                                   load_sweep_records, run_script,
                                                   script_parser, write_report)
-from tegrasp_drake.scenario.trial_log_file import load_trial_log
-from tegrasp_drake.sweep.trial_function import trial_log_name
+from tegrasp_drake.sweep.trial_function import load_record_log, trial_log_name
 
 G_OBJ, G_PO = 3, 6  # gripper_status columns: the object status and the position [counts]
 OBJECT_HELD_CLOSING = 2  # gOBJ: stopped on an object while closing
@@ -94,7 +93,8 @@ def main(argv=None) -> int:
     rows = []
     for trial_id, (record, path) in avoided.items():
         if trial_id not in missing:
-            rows.extend((trial_id, hold) for hold in trial_holds(record, load_trial_log(path)))
+            log = load_record_log(path, record)  # TrialLogError: another trial's log
+            rows.extend((trial_id, hold) for hold in trial_holds(record, log))
     creep = sum(1 for _, h in rows if h["creep"])
     lines = [TITLE, "",
              f"{len(rows)} Avoids in {len({r for r, _ in rows})} of {len(ran)} trials: "

@@ -7,7 +7,9 @@ updated records beside the original (records' results replaced, nothing re-simul
 RESULTS: a sweep's results folder; LOGS: its `tegrasp sweep --logs` folder; OUT: the new
 results folder (created; must not exist). A record whose log is missing is copied unchanged
 and named on stderr; RESULTS without records, or LOGS holding none of their logs, is refused
-(exit 1) before OUT is made.
+(exit 1) before OUT is made, as is a log that is not its record's trial (another
+controller, object, seed or placement: logs swapped or renamed), naming the log, the record
+and the field.
 """
 
 import json
@@ -20,9 +22,9 @@ from tegrasp_drake.commands.script_output import (SWEEP_LOGS_ADVICE, load_sweep_
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.sweep.records import TRIALS_FOLDER, make_record, write_record
 from tegrasp_drake.runs.trial import judge_trial
-from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec, trial_log_name
+from tegrasp_drake.sweep.trial_function import (load_record_log, scenario_from_trial_spec,
+                                                trial_log_name)
 from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
-from tegrasp_drake.scenario.trial_log_file import load_trial_log
 
 
 def main(argv=None) -> int:
@@ -44,6 +46,9 @@ def main(argv=None) -> int:
         raise SystemExit(f"rejudge_from_logs: {args.logs} holds none of the {len(logs)} "
                          f"records' logs (e.g. {next(iter(logs.values())).name}); give the "
                          "--logs folder of the sweep that wrote the records")
+    for trial_id, path in logs.items():  # each log its record's trial's, before OUT is made
+        if path.is_file():
+            load_record_log(path, loaded.records[trial_id])
     (args.out / TRIALS_FOLDER).mkdir(parents=True)
     changed = 0
     for trial_id, record in loaded.records.items():
@@ -52,7 +57,7 @@ def main(argv=None) -> int:
         if result is not None and path.is_file():
             scenario = scenario_from_trial_spec(migrate_stored_trial(record["trial"]))
             transitions = [Transition.from_dict(t) for t in result["transitions"]]
-            judged = judge_trial(load_trial_log(path), transitions, scenario)
+            judged = judge_trial(load_record_log(path, record), transitions, scenario)
             new = dict(result, **judged)
             changed += int(json.dumps(new, sort_keys=True, default=str)
                            != json.dumps(result, sort_keys=True, default=str))

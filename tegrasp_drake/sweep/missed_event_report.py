@@ -14,10 +14,9 @@ from tegrasp_drake.events.ra_noise_floor import rule_sigmas
 from tegrasp_drake.events.replay import tactile_trial_from_log
 from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 from tegrasp_drake.scenario.scenario import sample_rates_hz
-from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.simulation.film_readout import adc_input
 from tegrasp_drake.simulation.pad_vibration_sensor import volts_per_mps2
-from tegrasp_drake.sweep.trial_function import trial_events, trial_log_name
+from tegrasp_drake.sweep.trial_function import load_record_log, trial_events, trial_log_name
 
 
 @dataclasses.dataclass(frozen=True)
@@ -58,7 +57,7 @@ def trial_misses(record: dict, log_path, events_dir=None) -> list[TrialMiss]:
         return []
     config = event_matcher_config(scenario.controller, gripper_model=scenario.gripper.model,
                                   rates_hz=sample_rates_hz(scenario))
-    tactile = tactile_trial_from_log(load_trial_log(log_path))
+    tactile = tactile_trial_from_log(load_record_log(log_path, record))
     code = ra_code_mps2(scenario.vibration)
     return [TrialMiss(trial["trial_id"], trial["object_name"],
                       classify_missed_wait(tactile, events, wait, config), code,

@@ -30,8 +30,8 @@ from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, read_json
                                      remove_stale_staging_files_in, replace_problem,
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
-from tegrasp_drake.rig.echo import shorten
-from tegrasp_drake.sweep.spec import trial_problem
+from tegrasp_drake.rig.echo import shorten, shown
+from tegrasp_drake.sweep.spec import TrialSpec, offset_key, trial_problem
 
 RECORD_FORMAT = "tegrasp-sweep-record"
 # Version 2 adds "events", what the trial matched against (make_record); a version-1 record
@@ -74,10 +74,18 @@ class LoadedRecords:
 
     def table_problem(self, out_dir) -> str | None:
         """Why a table or figure may not be made from this folder's records, or None: a
-        corrupt record (corrupt_problem), or records that mix memorized events
-        (mixed_events_problem)."""
+        corrupt record (corrupt_problem), or records that are not one study's
+        (mixed_records_problem)."""
         return (self.corrupt_problem(out_dir)
-                or mixed_events_problem(self.records.values(), out_dir))
+                or mixed_records_problem(self.records.values(), out_dir))
+
+
+def mixed_records_problem(records, out_dir=None) -> str | None:
+    """Why `records` (valid records) may not be counted together, or None: they are records
+    of different sweeps (mixed_study_problem) or one row of Table I mixes memorized events
+    (mixed_events_problem). The one check every reader of a results folder makes."""
+    records = list(records)
+    return mixed_study_problem(records, out_dir) or mixed_events_problem(records, out_dir)
 
 
 def events_words(events: dict | None) -> str:
@@ -110,6 +118,80 @@ def mixed_events_problem(records, out_dir=None) -> str | None:
                     f"{events_words(events)}), and a table counting both would mix them: keep "
                     "the records of one events set in a folder (run the sweep again into "
                     "another --out with one --events)")
+    return None
+
+
+# The fields of a record's trial that one sweep gives every trial alike (its spec's base_seed,
+# randomisation.sensor_noise and scenario_overrides); absent scenario_overrides are none.
+_SWEEP_FIELDS = (("base_seed", None), ("sensor_noise", None), ("scenario_overrides", []))
+
+
+def _study_trial(trial: dict) -> dict:
+    """A record's trial as this version names its fields: a user object's old field names
+    (spec.user_object) and scenario_overrides keys since moved (moved_keys), as a resumed
+    sweep reads them, so that records of one sweep written by two versions agree."""
+    from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
+    if trial.get("object_definition"):
+        trial = TrialSpec.from_dict(trial).to_dict()
+    return migrate_stored_trial(trial)
+
+
+def _sweep_identities(trial: dict):
+    """(what, key, value, subject) of each thing of a trial that every record of its sweep
+    with the same `what` and `key` gives the same `value`: the sweep's own fields
+    (_SWEEP_FIELDS); a marker's offset and an offset's marker (the grid: marker_names); an
+    object's definition; a scene's draw (pair_id: seed and perturbation, drawn under the
+    sweep's randomisation), which every controller meets alike. `subject` names it."""
+    offset = [trial["marker_dx_m"], trial["marker_dy_m"]]
+    for name, absent in _SWEEP_FIELDS:
+        yield name, None, trial.get(name, absent), f"field 'trial.{name}' is"
+    yield ("marker", trial["marker"], offset_key(offset),
+           f"marker {trial['marker']} (fields 'trial.marker_dx_m', 'trial.marker_dy_m') lies at")
+    yield ("offset", offset_key(offset), trial["marker"],
+           f"the marker offset {shown(offset)} m (field 'trial.marker') is")
+    yield ("object", trial["object_name"], trial["object_definition"],
+           f"object '{trial['object_name']}' (field 'trial.object_definition') is")
+    yield ("scene", trial["pair_id"], [trial["seed"], trial["perturbation"]],
+           f"scene {trial['pair_id']} (fields 'trial.seed', 'trial.perturbation', drawn "
+           "under the sweep's randomisation) is")
+
+
+def _identity_value(what: str, value, trial: dict) -> str:
+    """A trial's `value` of the identity `what` (_sweep_identities), in words."""
+    if what == "marker":
+        return f"{shown([trial['marker_dx_m'], trial['marker_dy_m']])} m"
+    if what == "offset":
+        return f"marker {value}"
+    if what == "object":
+        return "the built-in one" if value is None else shorten(repr(value))
+    if what == "scene":
+        return f"seed {value[0]}, perturbation {shorten(canonical_json(value[1]), 120)}"
+    return shorten(repr(value))
+
+
+def mixed_study_problem(records, out_dir=None) -> str | None:
+    """Why `records` (valid records) are not the records of one sweep, or None: two of them
+    disagree on what the sweep gives its trials alike (_sweep_identities): the base seed,
+    sensor noise or scenario overrides; where a marker lies, or which marker an offset is
+    (records of two grids, whose marker names mean other offsets); an object's definition;
+    or a scene's seed and perturbation. A table or map counts records by marker and pair,
+    so records of two sweeps copied into one folder would be counted as one study's."""
+    first = {}  # (what, key) -> (canonical value, the first record giving it, its words)
+    for record in records:
+        trial = _study_trial(record["trial"])
+        for what, key, value, subject in _sweep_identities(trial):
+            text = canonical_json(value)
+            seen = first.setdefault((what, key),
+                                    (text, record, subject, _identity_value(what, value, trial)))
+            if seen[0] == text:
+                continue
+            where = f"{out_dir}: " if out_dir is not None else ""
+            names = [f"{TRIALS_FOLDER}/{record_file_name(r['trial_id'])}"
+                     for r in (seen[1], record)]
+            return (f"{where}records {names[0]} and {names[1]} are not of one sweep: "
+                    f"{seen[2]} {seen[3]} in one, {_identity_value(what, value, trial)} in the "
+                    "other; a table or map counting both would mix two studies: keep each "
+                    "sweep's records in a folder of their own (its `tegrasp sweep --out`)")
     return None
 
 

@@ -243,7 +243,7 @@ def trial_problem(trial) -> str | None:
         return (f"trial: field 'trial_id' must be {spec.controller + '/' + pair_id!r} "
                 f"(controller/pair_id), got {spec.trial_id!r}")
     offset = (spec.marker_dx_m, spec.marker_dy_m)
-    if spec.well_placed != (_offset_key(offset) == (0, 0)):
+    if spec.well_placed != (offset_key(offset) == (0, 0)):
         return (f"trial: field 'well_placed' is {str(spec.well_placed).lower()} but the marker "
                 f"is ({spec.marker_dx_m!r}, {spec.marker_dy_m!r}) m (well placed is the marker "
                 "at (0, 0))")
@@ -290,7 +290,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
         if (len(offset) != 2
                 or not all(number_problem(v) is None for v in offset)):
             fail("grid", f"marker offset {offset!r} is not a pair of finite numbers (m)")
-        key = _offset_key(offset)
+        key = offset_key(offset)
         if key in seen_markers:
             fail("grid", f"marker offset {offset!r} appears twice")
         seen_markers.add(key)
@@ -421,7 +421,7 @@ def is_number(value) -> bool:
     return real_number(value) is not None
 
 
-def _offset_key(offset) -> tuple[int, int]:
+def offset_key(offset) -> tuple[int, int]:
     """A marker offset in whole micrometres: its identity for seeds and duplicates."""
     return (round(offset[0] * 1e6), round(offset[1] * 1e6))
 
@@ -432,10 +432,10 @@ def _offset_key(offset) -> tuple[int, int]:
 def marker_names(grid) -> list[str]:
     """`m{i}{j}`: i, j index the sorted distinct x and y offsets (zero-padded past ten values);
     the paper's grid gives m00 .. m22, m11 well placed."""
-    xs = sorted({_offset_key(o)[0] for o in grid})
-    ys = sorted({_offset_key(o)[1] for o in grid})
+    xs = sorted({offset_key(o)[0] for o in grid})
+    ys = sorted({offset_key(o)[1] for o in grid})
     width = len(str(max(len(xs), len(ys)) - 1))
-    return [f"m{xs.index(_offset_key(o)[0]):0{width}d}{ys.index(_offset_key(o)[1]):0{width}d}"
+    return [f"m{xs.index(offset_key(o)[0]):0{width}d}{ys.index(offset_key(o)[1]):0{width}d}"
             for o in grid]
 
 
@@ -444,7 +444,7 @@ def trial_seed_sequence(base_seed: int, object_name: str, marker_offset,
     """The seed of one scene, from (base_seed, object, marker offset, attempt) only: CRC-32 of
     their text (stable across processes), the offset in whole micrometres (a marker keeps its
     seed when the grid around it changes)."""
-    dx_um, dy_um = _offset_key(marker_offset)
+    dx_um, dy_um = offset_key(marker_offset)
     return np.random.SeedSequence(
         entropy=base_seed,
         spawn_key=(zlib.crc32(object_name.encode("utf-8")),
@@ -608,7 +608,7 @@ def expand_trials(spec: SweepSpec, *, builtin_objects: Collection[str] = BUILTIN
                     marker=marker,
                     marker_dx_m=float(offset[0]),
                     marker_dy_m=float(offset[1]),
-                    well_placed=_offset_key(offset) == (0, 0),
+                    well_placed=offset_key(offset) == (0, 0),
                     attempt=attempt,
                     base_seed=spec.base_seed,
                     seed=seed,

@@ -15,7 +15,7 @@ import numpy as np
 from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
 from tegrasp_drake.rig.files import JSON_OBJECT_START, MARKDOWN_START, write_atomically
-from tegrasp_drake.sweep.records import mixed_events_problem, record_result
+from tegrasp_drake.sweep.records import mixed_records_problem, record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 
 # (placement, phase) columns of Table I, in the paper's order.
@@ -65,9 +65,10 @@ def ordered_names(names, preferred) -> list:
 
 def table1_rows(records) -> list[Table1Row]:
     """Table I rows per controller: one per object, then the average row; ValueError when
-    records of one row matched against different memorized events (mixed_events_problem)."""
+    the records are not one sweep's or records of one row matched against different memorized
+    events (mixed_records_problem)."""
     records = list(records)
-    problem = mixed_events_problem(records)
+    problem = mixed_records_problem(records)
     if problem:
         raise ValueError(f"table1_rows: {problem}")
     counts = defaultdict(lambda: [0, 0])   # (controller, object, column) -> [succ, trials]

@@ -11,9 +11,12 @@ from typing import Annotated
 import numpy as np
 
 from tegrasp_drake.runs.trial import run_trial
-from tegrasp_drake.sweep.records import canonical_json
-from tegrasp_drake.scenario.trial_log_file import save_log_copy
+from tegrasp_drake.sweep.records import (OFFSET_TOLERANCE_M, TRIALS_FOLDER, canonical_json,
+                                         record_file_name)
+from tegrasp_drake.scenario.trial_log_file import (TrialLog, TrialLogError, load_trial_log,
+                                                   logged_scenario, save_log_copy)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, OUTPUT_FOLDER, PathLike, public_api
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 logger = logging.getLogger(__name__)
@@ -60,6 +63,59 @@ def trial_log_name(trial: dict, events: dict | None = None) -> str:
     named = trial if events is None else {"trial": trial, "events": events["sha256"]}
     digest = hashlib.sha256(canonical_json(named).encode("utf-8")).hexdigest()[:12]
     return f"{trial['trial_id'].replace('/', '.')}.{digest}.npz"
+
+
+def record_log_problem(log: TrialLog, record: dict) -> str | None:
+    """Why `log` (a loaded trial log) is not the log of `record`'s trial, or None: the
+    controller it ran (meta 'controller'), the object it grasped, its seed (the scenario's
+    random_seed) and where it placed the object (placement.offset), in its scenario and its
+    result where it holds them, must be the record's trial's (controller, object_name, seed,
+    marker + perturbation offset, within OFFSET_TOLERANCE_M). A log copied or renamed onto
+    another trial's name holds another trial."""
+    trial = record["trial"]
+    scenario, _ = logged_scenario(log.meta)
+    jitter = trial["perturbation"]
+    offset = [trial["marker_dx_m"] + jitter["dx_m"], trial["marker_dy_m"] + jitter["dy_m"]]
+    result = log.meta.get("result") or {}
+    checks = [("meta 'controller'", log.meta.get("controller"), "controller",
+               trial["controller"])]
+    if scenario is not None:
+        checks += [("meta 'scenario' object.name", scenario.object.name, "object_name",
+                    trial["object_name"]),
+                   ("meta 'scenario' random_seed", scenario.random_seed, "seed", trial["seed"]),
+                   ("meta 'scenario' placement.offset", list(scenario.placement.offset),
+                    "marker + perturbation offset", offset)]
+    checks += [(f"meta 'result' {name}", result[name], trial_field, expected)
+               for name, trial_field, expected in (("object", "object_name",
+                                                    trial["object_name"]),
+                                                   ("seed", "seed", trial["seed"]),
+                                                   ("offset_m", "marker + perturbation offset",
+                                                    offset))
+               if name in result]
+    for field, logged, trial_field, expected in checks:
+        if field.endswith("offset") or field.endswith("offset_m"):
+            same = (len(logged) == 2 and all(abs(a - b) <= OFFSET_TOLERANCE_M
+                                             for a, b in zip(logged, expected)))
+        else:
+            same = logged == expected
+        if not same:
+            return (f"its {field} is {shorten(repr(logged))}, but the record's trial's "
+                    f"{trial_field} is {shorten(repr(expected))}")
+    return None
+
+
+def load_record_log(path, record: dict) -> TrialLog:
+    """The trial log at `path`, read for `record` (its name trial_log_name's for the record);
+    TrialLogError naming the log, the record and the field when it is no log or is another
+    trial's (record_log_problem)."""
+    log = load_trial_log(path)
+    problem = record_log_problem(log, record)
+    if problem:
+        raise TrialLogError(
+            f"trial log '{path}' is not the log of record {TRIALS_FOLDER}/"
+            f"{record_file_name(record['trial_id'])}: {problem}; a log named for a record "
+            "holds that trial: give the --logs folder of the sweep that wrote the records")
+    return log
 
 
 def trial_events(trial: dict, events_dir=None) -> tuple:

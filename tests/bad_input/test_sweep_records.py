@@ -636,3 +636,85 @@ def test_no_committed_results_folder_mixes_events():
     assert len(folders) >= 50
     for folder in folders:
         assert load_records(folder).table_problem(folder) is None, folder
+
+
+# Rule: a results folder holds one sweep's records. Records that disagree on what the sweep
+# gives its trials alike -- where a marker lies or which marker an offset is (two grids, whose
+# marker names mean other offsets), the base seed, sensor noise, scenario overrides, an
+# object's definition, a scene's draw -- copied into one folder's trials/ are refused by every
+# reader of the folder in one line naming two of them and the field (a table silently counted
+# them as one study).
+def _two_sweeps_folder(tmp_path, first: SweepSpec, second: SweepSpec, copied="*.json"):
+    """A folder holding `first`'s records and, copied in beside them, `second`'s (those named
+    as `copied` matches) that `first` has no record of (another sweep's folder copied in)."""
+    results, other = tmp_path / "mix", tmp_path / "other"
+    run_sweep(first, fake_trial, results, workers=1, progress=False)
+    run_sweep(second, fake_trial, other, workers=1, progress=False)
+    for path in sorted((other / "trials").glob(copied)):
+        if not (results / "trials" / path.name).exists():
+            (results / "trials" / path.name).write_bytes(path.read_bytes())
+    return results
+
+
+_ONE_SWEEP = dict(objects=("box",), controllers=("open_loop",), attempts=1, base_seed=650)
+
+
+@pytest.mark.parametrize("second, words", [
+    # one marker: m00 at (0, 0), where the first grid's m00 is (-0.01, 0)
+    (dict(grid=((0.0, 0.0),), objects=("thin_cylinder",)),
+     ["marker m00 (fields 'trial.marker_dx_m', 'trial.marker_dy_m') lies at [-0.01, 0.0] m "
+      "in one, [0.0, 0.0] m in the other"]),
+    # the same grid's markers moved by a third offset added below them
+    (dict(grid=((-0.02, 0.0), (-0.01, 0.0), (0.0, 0.0)), attempts=2),
+     ["marker m00 (fields 'trial.marker_dx_m', 'trial.marker_dy_m') lies at [-0.01, 0.0] m "
+      "in one, [-0.02, 0.0] m in the other"]),
+    # the same offset under another marker: (0, 0) is m10 in one grid, m20 in the other
+    (dict(grid=((-0.02, 0.0), (-0.01, 0.0), (0.0, 0.0)), objects=("thin_cylinder",),
+          copied="*.m20.*"),
+     ["the marker offset [0.0, 0.0] m (field 'trial.marker') is marker m10 in one, marker "
+      "m20 in the other"]),
+    (dict(base_seed=651, objects=("thin_cylinder",)),
+     ["field 'trial.base_seed' is 650 in one, 651 in the other"]),
+    (dict(randomisation=RandomisationConfig(sensor_noise=False), attempts=2),
+     ["field 'trial.sensor_noise' is True in one, False in the other"]),
+    (dict(scenario_overrides=("gripper.screw_efficiency=0.3",), controllers=("heuristic",)),
+     ["field 'trial.scenario_overrides' is ['gripper.screw_efficiency=0.3'] in one, [] in "
+      "the other"]),
+    (dict(randomisation=RandomisationConfig(placement_xy_bound_m=0.001),
+          controllers=("heuristic",)),
+     ["scene box/m00/a0 (fields 'trial.seed', 'trial.perturbation'"]),
+])
+def test_records_of_two_sweeps_in_one_folder_are_refused(tmp_path, capfd, second, words):
+    from tegrasp_drake.sweep import table1_rows
+    from tests.analysis_script import load_analysis_script
+    first = SweepSpec(**_ONE_SWEEP, grid=((-0.01, 0.0), (0.0, 0.0)))
+    second = dict(second)
+    copied = second.pop("copied", "*.json")
+    results = _two_sweeps_folder(tmp_path, first, SweepSpec(**{
+        **_ONE_SWEEP, "grid": ((-0.01, 0.0), (0.0, 0.0)), **second}), copied)
+    words = ["are not of one sweep", *words, "keep each sweep's records in a folder of their own"]
+    for kind in ("success-maps", "table1"):
+        out = tmp_path / f"{kind}.png"
+        code, text = run_cli(["plot", kind, str(results), "--out", str(out)], capfd)
+        assert_one_line_error(code, text, str(results), "records trials/", *words)
+        assert not out.exists()
+    for script in ("make_table1", "make_success_maps"):
+        with pytest.raises(SystemExit) as refused:
+            load_analysis_script(script).main([str(results)])
+        assert all(w in str(refused.value) for w in words), refused.value
+    with pytest.raises(ValueError, match="table1_rows: records .* are not of one sweep"):
+        table1_rows(load_records(results).records.values())
+
+
+def test_records_of_one_sweep_run_in_parts_are_one_study(tmp_path):
+    """Objects, controllers and attempts run into one folder by several sweeps of one spec's
+    settings are one study."""
+    from tegrasp_drake.sweep.records import mixed_records_problem
+    first = SweepSpec(**_ONE_SWEEP, grid=((-0.01, 0.0), (0.0, 0.0)))
+    results = _two_sweeps_folder(tmp_path, first, SweepSpec(**{
+        **_ONE_SWEEP, "grid": ((-0.01, 0.0), (0.0, 0.0)), "objects": ("box", "thin_cylinder"),
+        "controllers": ("open_loop", "heuristic"), "attempts": 2}))
+    loaded = load_records(results)
+    assert len(loaded.records) == 16
+    assert mixed_records_problem(loaded.records.values(), results) is None
+    assert loaded.table_problem(results) is None
