@@ -461,3 +461,11 @@ def test_an_event_whose_scenario_text_holds_a_python_tag_is_a_damaged_file(event
         assert code == 1, text
         assert_one_line_error(code, text, f"{path}: field 'scenario': line 1, column 1",
                               "Python object tag", "tegrasp record-events --object box")
+
+
+# Rule: the public loader names an unknown transition in its argument `required` as the
+# argument's fault, not the events folder's (which would send the user to record again).
+def test_a_required_transition_that_does_not_exist_is_the_arguments_fault():
+    with pytest.raises(ValueError, match="argument 'required' names 'bogus', no transition; "
+                                         "the transitions are reach_load, "):
+        load_memorized_events(paths.package_events_dir(), "box", required=["bogus"])
