@@ -153,6 +153,20 @@ def _description_from_scenario(scenario_text: str, path, object_name) -> dict:
     return description
 
 
+def _check_scenario_text(text: str, path, object_name) -> None:
+    """MemorizedEventError naming the file's field 'scenario' when its text is YAML no
+    scenario reader accepts (a Python object tag, a duplicate key, nesting or size past the
+    reader's limits): the file is damaged or edited, whoever reads the scenario later. Text
+    that is no YAML at all is a note (an ensemble's combined runs) and is kept."""
+    from tegrasp_drake.rig.typed_yaml import ConfigError, YamlSyntaxError, parse_yaml
+    try:
+        parse_yaml(text, "field 'scenario'")
+    except YamlSyntaxError:
+        return
+    except ConfigError as error:
+        raise MemorizedEventError(path, str(error), object_name) from None
+
+
 def _object_description(data: dict, path, object_name) -> dict:
     """The file's object description (version 2), or its migration (version 1)."""
     if data.get("format_version") == 1:
@@ -246,6 +260,7 @@ def read_memorized_event(path, *, object_name: str | None = None,
                             "transition_time_s")}
     texts = {name: _field(data, name, "text", path, owner)
              for name in ("transition", "normalization", "scenario")}
+    _check_scenario_text(texts["scenario"], path, owner)
     channels = _field(data, "channels", "list", path, owner)
     versions = _field(data, "package_versions", "object", path, owner)
     description = _object_description(data, path, owner)

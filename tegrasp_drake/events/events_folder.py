@@ -186,6 +186,11 @@ def load_memorized_events(events_dir: PathLike, object_name: str, *,
                           ) -> dict[str, MemorizedEvent]:
     """The memorized events of `object_name`, by transition, in grasp order; the folder must hold
     its `required` transitions (a corrective events folder: CORRECTIVE_TRANSITIONS)."""
+    unknown = [name for name in required if name not in TRANSITIONS]
+    if unknown:
+        raise ValueError(f"load_memorized_events: argument 'required' names "
+                         f"{shorten(repr(unknown[0]))}, no transition; the transitions are "
+                         f"{', '.join(TRANSITIONS)}")
     events_dir = pathlib.Path(events_dir)
     entries = [e for e in read_index(events_dir) if e["object"] == object_name]
     if not entries:

@@ -118,11 +118,25 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
     sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
                                    f"{source} [sweep]")
     _check_sweep_leaves_worlds_alone(worlds, sweep, source)
+    _check_a_controller_reads_events(sweep, source)
     spec = TransferSpec(worlds=worlds, cells=cells, sweep=sweep,
                         events_seed=events_seed_field(data, source))
     check_matrix_size(spec, source, confirmed_trials)
     check_worlds(spec, source)
     return spec
+
+
+def _check_a_controller_reads_events(sweep, source: str) -> None:
+    """ConfigError when none of the sweep's controllers reads memorized events: a transfer
+    study runs events memorized in one world in another, so with none every cell would run
+    the same trials and the recordings would go unused."""
+    from tegrasp_drake.control.controller_registry import controller_entry
+    if any(controller_entry(name).event_triggered for name in sweep.controllers):
+        return
+    raise ConfigError(
+        f"{source}: field 'sweep.controllers': {', '.join(sweep.controllers)} read no "
+        "memorized events, so no cell would differ from another; add a controller that "
+        "reads them (memorized, taxel_aware), or run `tegrasp sweep` for these")
 
 
 def _check_sweep_leaves_worlds_alone(worlds, sweep, source: str) -> None:

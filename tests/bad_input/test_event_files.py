@@ -445,3 +445,27 @@ def test_every_committed_event_lies_within_its_recorded_run():
                 assert recorded_run_problem(event) is None, (folder, name, event.transition)
                 checked += 1
     assert checked >= 100
+
+
+# Rule: an event file's scenario text that no scenario reader accepts (a Python object tag)
+# makes the file damaged: refused by its reader naming the file and field, with how to
+# remake it; a sweep says so as any unusable events folder (exit 1), as a trial does.
+def test_an_event_whose_scenario_text_holds_a_python_tag_is_a_damaged_file(events_copy, capfd):
+    path = events_copy / "box" / "reach_load.json"
+    edit_json(path, lambda data: data.update(scenario="!!python/object/apply:os.system [ls]"))
+    for argv in (["trial", "--events", str(events_copy)],
+                 ["sweep", "--dry-run", "--events", str(events_copy), "--objects", "box",
+                  "--controllers", "memorized", "--attempts", "1", "--out",
+                  str(events_copy.parent / "sweep")]):
+        code, text = run_cli(argv, capfd)
+        assert code == 1, text
+        assert_one_line_error(code, text, f"{path}: field 'scenario': line 1, column 1",
+                              "Python object tag", "tegrasp record-events --object box")
+
+
+# Rule: the public loader names an unknown transition in its argument `required` as the
+# argument's fault, not the events folder's (which would send the user to record again).
+def test_a_required_transition_that_does_not_exist_is_the_arguments_fault():
+    with pytest.raises(ValueError, match="argument 'required' names 'bogus', no transition; "
+                                         "the transitions are reach_load, "):
+        load_memorized_events(paths.package_events_dir(), "box", required=["bogus"])

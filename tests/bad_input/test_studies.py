@@ -474,3 +474,21 @@ def test_a_world_events_folder_that_cannot_be_made_is_one_line(tmp_path, capfd):
     assert code == 1, text
     assert "events/w" in text and "internal error" not in text
     assert len(text.strip().splitlines()) == 1
+
+
+# Rule: a transfer study runs memorized events in another world, so its sweep needs a
+# controller that reads them; one of open_loop alone is refused when the spec is loaded,
+# naming the field, before any recording.
+def test_a_transfer_whose_controllers_read_no_events_is_refused(tmp_path, monkeypatch):
+    from tegrasp_drake.transfer.matrix import LoadTransferSpec
+    monkeypatch.chdir(tmp_path)
+    spec = pathlib.Path("t.yaml")
+    spec.write_text("worlds:\n  a: {scenario: memorizing_world}\n"
+                    "  b: {scenario: faithful_world}\ncells: [[a, b]]\n"
+                    "sweep: {objects: [box], controllers: [open_loop], attempts: 1}\n")
+    with pytest.raises(ConfigError) as refused:
+        LoadTransferSpec(spec)
+    message = str(refused.value)
+    for word in ("t.yaml", "field 'sweep.controllers': open_loop read no memorized events",
+                 "memorized, taxel_aware"):
+        assert word in message, message
