@@ -25,6 +25,7 @@ from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
     BENCHMARK_WORKER_COUNTS,
+    RecordPlaceError,
     SchedulerLostError,
     SweepError,
     benchmark_spec,
@@ -363,7 +364,8 @@ class Refusal:
 def refusals_said(command: str):
     """The refusals of a command that runs sweeps (sweep, transfer, sensitivity), each said
     in one line on stderr, `tegrasp COMMAND: error: ...`, with its exit code set on the
-    Refusal yielded: 1 for bad input (OptionError) and for a scheduler lost mid-run
+    Refusal yielded: 1 for bad input (OptionError), an output folder that cannot take a
+    record (RecordPlaceError) and a scheduler lost mid-run
     (SchedulerLostError: the unfinished trials run again with the same command), 2 for a
     spec refused (ConfigError, SweepError). Memorized events that cannot be read
     (MemorizedEventError, e.g. a damaged DIR/events) end the command as bad input,
@@ -372,7 +374,7 @@ def refusals_said(command: str):
     refusal = Refusal()
     try:
         yield refusal
-    except (OptionError, SchedulerLostError) as error:
+    except (OptionError, SchedulerLostError, RecordPlaceError) as error:
         print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 1
     except (ConfigError, SweepError) as error:

@@ -65,6 +65,11 @@ class SweepError(RuntimeError):
     """A sweep cannot start or could not finish; the message says what to do."""
 
 
+class RecordPlaceError(SweepError):
+    """The output folder cannot take a trial's record (a folder where the record belongs,
+    `trials` not a folder): a folder that cannot be used, said before any trial runs."""
+
+
 class SchedulerLostError(SweepError):
     """The Dask scheduler went away while trials ran; the finished ones are recorded."""
 
@@ -345,7 +350,7 @@ def _check_records_writable(out_dir, pending, set_aside=()) -> None:
     if unwritable:
         path, problem = unwritable[0]
         more = f" (and {len(unwritable) - 1} more)" if len(unwritable) > 1 else ""
-        raise SweepError(f"the record {path} {problem}{more}; nothing was run")
+        raise RecordPlaceError(f"the record {path} {problem}{more}; nothing was run")
 
 
 def _check_records_fit(trials, trial_function, records, out_dir) -> dict[str, dict | None]:

@@ -52,8 +52,9 @@ def test_a_folder_in_place_of_a_sweep_record_is_refused_before_the_trial_runs(tm
 
 
 # Rule: `tegrasp sweep --dry-run` refuses an --out the real run refuses, by the same check
-# and in the same words: a folder in a record's place, a `trials` that is no folder (a file, a
-# dangling link); a corrupt record file the run sets aside is no refusal.
+# and in the same words, as a folder that cannot be used (exit 1): a folder in a record's
+# place, a `trials` that is no folder (a file, a dangling link); a corrupt record file the
+# run sets aside is no refusal.
 @pytest.mark.parametrize("make, words", [
     (lambda trials, record: (record.mkdir(parents=True), (record / "mine.txt").write_text("x")),
      "is a folder where a file belongs"),
@@ -73,7 +74,7 @@ def test_a_dry_run_refuses_the_record_places_the_run_refuses(make, words, tmp_pa
             "--trial-function", "tests.fake_trials:fake_trial"]
     dry = run_cli([*argv, "--dry-run"], capfd)
     real = run_cli(argv, capfd)
-    assert dry[0] == real[0] == 2, (dry, real)
+    assert dry[0] == real[0] == 1, (dry, real)  # a folder that cannot be used
     assert_one_line_error(dry[0], dry[1], words, "nothing was run")
     assert dry[1] == real[1]
 
