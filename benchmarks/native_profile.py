@@ -21,7 +21,6 @@ on the two runs differently: compare shares, and CPU figures only from one run o
 host.
 """
 
-import argparse
 import json
 import os
 import pathlib
