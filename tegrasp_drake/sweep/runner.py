@@ -35,6 +35,7 @@ from tegrasp_drake.sweep.records import (
     earlier_temporary_files,
     events_words,
     load_records,
+    mixed_study_problem,
     make_record,
     record_name_trial_id,
     remove_stale_staging_files,
@@ -357,9 +358,24 @@ def _check_records_fit(trials, trial_function, records, out_dir) -> dict[str, di
     """The trials' memorized-event identities (trial_events_identities), after refusing
     `records` made for the same ids with other settings or other events."""
     _check_same_sweep(trials, records, out_dir)
+    _check_one_study(trials, records, out_dir)
     events = trial_events_identities(trial_function, trials)
     _check_same_events(events, records, out_dir)
     return events
+
+
+def _check_one_study(trials, records, out_dir) -> None:
+    """SweepError when the folder's records and this sweep's trials are not of one study
+    (mixed_study_problem: another grid, base seed, noise, overrides, object definition or scene
+    draw, under other trial ids): the folder's readers would refuse it once run."""
+    problem = mixed_study_problem(records.values(), out_dir)
+    if problem is None:
+        planned = [{"trial_id": trial["trial_id"], "trial": trial} for trial in trials]
+        problem = mixed_study_problem([*records.values(), *planned], out_dir)
+        if problem is not None:
+            problem += " (the second is this sweep's, not yet run)"
+    if problem is not None:
+        raise SweepError(f"{problem}; nothing was run")
 
 
 def _check_same_sweep(trials, records, out_dir):

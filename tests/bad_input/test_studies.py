@@ -431,7 +431,7 @@ def test_a_transfer_world_on_the_hardware_station_is_refused(tmp_path):
     spec.write_text("worlds:\n  w: {scenario: faithful_world, overrides: "
                     "['station=!HardwareStationConfig {}']}\n"
                     "cells:\n  memorize_in: [w]\n  run_in: [w]\n"
-                    "sweep:\n  objects: [box]\n  controllers: [heuristic]\n  attempts: 1\n")
+                    "sweep:\n  objects: [box]\n  controllers: [memorized]\n  attempts: 1\n")
     with pytest.raises(ConfigError, match=r"worlds\.w.*HardwareStationConfig.*simulates"):
         LoadTransferSpec(spec)
 

@@ -719,3 +719,26 @@ def test_records_of_one_sweep_run_in_parts_are_one_study(tmp_path):
     assert len(loaded.records) == 16
     assert mixed_records_problem(loaded.records.values(), results) is None
     assert loaded.table_problem(results) is None
+
+
+# Rule: a sweep into a folder holding another study's records (another base seed, under
+# other trial ids) is refused before it runs, as the folder's readers would refuse the mix
+# once it had; the same spec with another controller is one study and runs.
+def test_a_sweep_into_a_folder_of_another_study_is_refused_before_it_runs(tmp_path, capfd):
+    out = tmp_path / "out"
+
+    def sweep(controller, seed):
+        spec = tmp_path / f"{controller}-{seed}.yaml"
+        spec.write_text(f"objects: [box]\ncontrollers: [{controller}]\nattempts: 1\n"
+                        f"grid: [[0.0, 0.0]]\nbase_seed: {seed}\n")
+        return run_cli(["sweep", "--spec", str(spec), "--out", str(out), "--workers", "1",
+                        "--no-progress", "--trial-function", "tests.fake_trials:fake_trial"],
+                       capfd)
+    assert sweep("open_loop", 0)[0] == 0
+    before = sorted(path.name for path in (out / "trials").iterdir())
+    code, text = sweep("heuristic", 5)
+    assert code == 2, text
+    assert_one_line_error(code, text, "are not of one sweep", "base_seed", "is 0 in one, 5 in",
+                          "this sweep's, not yet run", "nothing was run")
+    assert sorted(path.name for path in (out / "trials").iterdir()) == before
+    assert sweep("heuristic", 0)[0] == 0
