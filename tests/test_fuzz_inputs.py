@@ -35,10 +35,9 @@ from pydrake.multibody.plant import AddMultibodyPlant, MultibodyPlantConfig
 from pydrake.systems.analysis import ApplySimulatorConfig, Simulator, SimulatorConfig
 from pydrake.systems.framework import DiagramBuilder
 
-from tests.bad_input.probes import trial_log
+from tests.bad_input.probes import memorized_events, trial_log
 from tegrasp_drake.events.event_file import MemorizedEventError
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
-from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.hardware.config import HardwareStationConfig, LoadHardwareConfig
 from tegrasp_drake.hardware.myrio.tactile_frame import (MAX_FRAME_SIZE, TactileFrameDecoder,
@@ -52,7 +51,6 @@ from tegrasp_drake.scenario.scenario import LoadScenario, Scenario
 from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
 from tegrasp_drake.sweep.spec import SweepSpec
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
-from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.sensitivity.study import LoadSensitivitySpec
 from tegrasp_drake.transfer.matrix import LoadTransferSpec
 
@@ -288,21 +286,10 @@ def test_any_hardware_config_loads_or_is_one_config_error(data, folder):
 
 # --- memorized events ---------------------------------------------------------------------------
 
-def _events(seed=0):
-    rng = np.random.default_rng(seed)
-
-    def window(rate):
-        values = rng.uniform(0.1, 1.0, (2, samples_per_window(0.5, rate)))
-        return values / values.max(axis=1, keepdims=True)
-    return [MemorizedEvent(object_name="mine", transition=transition, sa=window(108.0),
-                           ra=window(1000.0), sa_rate_hz=108.0, ra_rate_hz=1000.0)
-            for transition in REQUIRED_TRANSITIONS]
-
-
 @pytest.fixture(scope="module")
 def events_folder(folder):
     path = folder / "events"
-    save_memorized_events(path, _events())
+    save_memorized_events(path, memorized_events())
     return path
 
 

@@ -169,7 +169,8 @@ def _held_events_folder(out, named: str):
 def _record(out, to_record, runs: int, args) -> int:
     """Records and saves each object's events into `out` (held by the caller)."""
     from tegrasp_drake.events import save_memorized_events
-    from tegrasp_drake.events.events_folder import EventsDestinationError
+    from tegrasp_drake.events.events_folder import (EventsDestinationError,
+                                                    UnreadableEventsError)
     from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, record_object_ensemble)
     from tegrasp_drake.recording.paper_events import RecordEventsError, record_events
     for object_name, scenario in to_record:
@@ -193,7 +194,7 @@ def _record(out, to_record, runs: int, args) -> int:
                 if ensemble:
                     written += save_memorized_events(pathlib.Path(out) / ENSEMBLE_FOLDER,
                                                      ensemble.values())
-        except (RecordEventsError, EventsDestinationError) as e:
+        except (RecordEventsError, EventsDestinationError, UnreadableEventsError) as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
         except OSError as e:
             raise SystemExit(f"tegrasp: error: cannot write the events to {out}: "

@@ -4,6 +4,7 @@
 - memorized_event.py: MemorizedEvent, one object's four max-normalised windows.
 - extraction.py: cuts the events out of a recorded ideal grasp.
 - event_file.py: one event's JSON file and the folder's index (FORMAT.md).
+- one_grasp.py: an object's events as one set, cut from one grasp.
 - events_folder.py: save, load and find an events folder.
 - correlation.py: Eq. 3 and the contrast gate, the reference implementation.
 - streaming_correlation.py: the exact per-sample update of the Eq. 3 scores.

@@ -7,6 +7,7 @@ Sorted keys, one window a line, shortest round-trip floats: a file reads back to
 float64 values, and recording the same data again gives identical bytes. A bad file raises
 MemorizedEventError naming the file and the command that remakes it (FORMAT.md)."""
 
+import functools
 import json
 import math
 import os
@@ -16,8 +17,8 @@ import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
 from tegrasp_drake.rig.files import JsonFileError, error_line, one_line, read_json_file
-from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.objects import BUILTIN_OBJECTS, DESCRIPTION_FIELDS, object_name_problem
+from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DESCRIPTION_FIELDS, ObjectConfig,
+                                       description_differences, object_name_problem)
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import TRANSITIONS
@@ -133,38 +134,91 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
         raise MemorizedEventError(path, error.problem, object_name) from None
 
 
+@functools.lru_cache(maxsize=16)
+def _parsed_scenario_object(text: str) -> tuple | None:
+    """scenario_object's answer as a hashable tuple (name, shape, size, mass, friction, file);
+    cached, so the text an object's events share (one grasp, one text) is parsed once."""
+    from tegrasp_drake.rig.typed_yaml import YamlSyntaxError, parse_yaml
+    try:
+        scenario = parse_yaml(text, "field 'scenario'")
+    except YamlSyntaxError:
+        return None  # no YAML at all: a note (an ensemble's combined runs)
+    section = scenario.get("object") if isinstance(scenario, dict) else None
+    if not isinstance(section, dict) or not section.get("shape") or not section.get("size"):
+        return None  # no object described (a note, or a built-in named without its shape)
+    try:
+        size = tuple(float(v) for v in section["size"])
+        mass, friction = float(section["mass"]), float(section["friction"])
+        name, shape, file = (section.get("name", ObjectConfig.name), section["shape"],
+                             section.get("file", ""))
+        if not all(isinstance(v, str) for v in (name, shape, file)):
+            raise TypeError(name)
+    except (TypeError, KeyError, ValueError):
+        raise ValueError("field 'scenario' holds an object section that does not describe an "
+                         "object (name, shape and file as text, size, mass and friction as "
+                         "numbers)") from None
+    return name, shape, size, mass, friction, file
+
+
+def scenario_object(text: str) -> tuple[str, dict] | None:
+    """(name, description) of the object an event's `scenario` text grasps: the object section
+    a recording stores (scenario_to_yaml, the object resolved), in object_description's form;
+    None when the text is a note (no YAML) or describes no object (no shape or size).
+    ConfigError for YAML no scenario reader accepts (a Python object tag, a duplicate key,
+    nesting or size past the reader's limits), ValueError for an object section that is not
+    an object's."""
+    parsed = _parsed_scenario_object(text)
+    if parsed is None:
+        return None
+    name, shape, size, mass, friction, file = parsed
+    return name, {"shape": shape, "size": list(size), "mass": mass, "friction": friction,
+                  "file": file}
+
+
 def _description_from_scenario(scenario_text: str, path, object_name) -> dict:
     """A version-1 file's object description: the object section of its scenario text."""
-    from tegrasp_drake.rig.typed_yaml import ConfigError, parse_yaml
+    from tegrasp_drake.rig.typed_yaml import ConfigError
     try:
-        scenario = parse_yaml(scenario_text, str(path))
-        obj = scenario["object"]
-        description = {name: obj.get(name, "") for name in DESCRIPTION_FIELDS}
-        description["size"] = [float(v) for v in description["size"]]
-        description["mass"], description["friction"] = (float(obj["mass"]),
-                                                        float(obj["friction"]))
-        if not description["shape"] or not description["size"]:
-            raise KeyError("shape")
-    except (ConfigError, TypeError, KeyError, ValueError):
+        described = scenario_object(scenario_text)
+    except ConfigError as error:
+        raise MemorizedEventError(path, str(error), object_name) from None
+    except ValueError:
+        described = None
+    if described is None:
         raise MemorizedEventError(
             path, "is a format_version 1 file whose scenario text does not describe the "
             "object (shape, size, mass, friction), so it cannot be checked against the "
-            "object it is used for", object_name) from None
-    return description
+            "object it is used for", object_name)
+    return described[1]
 
 
-def _check_scenario_text(text: str, path, object_name) -> None:
-    """MemorizedEventError naming the file's field 'scenario' when its text is YAML no
-    scenario reader accepts (a Python object tag, a duplicate key, nesting or size past the
-    reader's limits): the file is damaged or edited, whoever reads the scenario later. Text
-    that is no YAML at all is a note (an ensemble's combined runs) and is kept."""
-    from tegrasp_drake.rig.typed_yaml import ConfigError, YamlSyntaxError, parse_yaml
+def event_problem(event: MemorizedEvent) -> str | None:
+    """Why the event files' reader refuses `event`, whatever file holds it, in words naming
+    the field, else None: windows no recording gives (MemorizedEvent.shape_problem), or a
+    `scenario` text no scenario reader accepts or whose object (scenario_object) is not the
+    event's `object` and `object_description`. Asked of every event read and saved."""
+    problem = event.shape_problem()
+    if problem:
+        return problem
     try:
-        parse_yaml(text, "field 'scenario'")
-    except YamlSyntaxError:
-        return
-    except ConfigError as error:
-        raise MemorizedEventError(path, str(error), object_name) from None
+        described = scenario_object(event.scenario)
+    except ValueError as error:  # a ConfigError too
+        return str(error)
+    if described is None:
+        return None
+    name, description = described
+    advice = "an event is felt on the object of the scenario it was recorded in"
+    if name != event.object_name:
+        return (f"field 'scenario' grasps object '{name}', but field 'object' is "
+                f"'{event.object_name}': {advice}")
+    differences = (description_differences(description, event.object_description,
+                                           labels=("field 'scenario'",
+                                                   "field 'object_description'"))
+                   if event.object_description else [])
+    if differences:
+        return (f"field 'scenario' describes another object than field "
+                f"'object_description': {'; '.join(differences)}: {advice}")
+    return None
 
 
 def _object_description(data: dict, path, object_name) -> dict:
@@ -260,7 +314,6 @@ def read_memorized_event(path, *, object_name: str | None = None,
                             "transition_time_s")}
     texts = {name: _field(data, name, "text", path, owner)
              for name in ("transition", "normalization", "scenario")}
-    _check_scenario_text(texts["scenario"], path, owner)
     channels = _field(data, "channels", "list", path, owner)
     versions = _field(data, "package_versions", "object", path, owner)
     description = _object_description(data, path, owner)
@@ -282,16 +335,9 @@ def read_memorized_event(path, *, object_name: str | None = None,
             channel_names=tuple(channels), object_description=description)
     except ValueError as error:
         raise MemorizedEventError(path, str(error), owner) from None
-    zero = event.zero_channels()
-    if zero:
-        raise MemorizedEventError(path, f"channels {zero} are zero throughout the window: "
-                                  "Eq. 3 could never match them", owner)
-    turned = event.negative_peak()
-    if turned:
-        raise MemorizedEventError(path, negative_peak_problem(*turned), owner)
-    falling = event.falling_first_contact()
-    if falling:
-        raise MemorizedEventError(path, falling_first_contact_problem(*falling), owner)
+    problem = event_problem(event)
+    if problem:
+        raise MemorizedEventError(path, problem, owner)
     version = data.get("format_version")
     quiet = [CHANNEL_NAMES[i] for i in RA_CHANNELS if np.all(event.ra[i - 2] == 1.0)]
     if version != FORMAT_VERSION and quiet:
@@ -305,22 +351,6 @@ def read_memorized_event(path, *, object_name: str | None = None,
             raise MemorizedEventError(path, f"holds {name} '{found}', expected '{expected}'",
                                       owner)
     return event
-
-
-def negative_peak_problem(channel: str, index: int, value: float) -> str:
-    """The words for MemorizedEvent.negative_peak's (channel, index, value)."""
-    return (f"field 'samples.{channel}' sample {index} is {number_text(value)}, the window's "
-            "peak, but no sample is +1: max-normalising divides by the peak's magnitude, so "
-            "a recorded window's peak is the force or vibration the pad felt, +1, and a "
-            "negative peak is no window a recording gives (turned over or edited)")
-
-
-def falling_first_contact_problem(channel: str, before: float, after: float) -> str:
-    """The words for MemorizedEvent.falling_first_contact's (channel, before, after)."""
-    return (f"field 'samples.{channel}' peaks before the first contact and falls through it "
-            f"(mean {number_text(before)} before, {number_text(after)} after): at first "
-            "contact a pad's force rises, so this window is no recording's (reversed in time "
-            "or edited)")
 
 
 def has_index(events_dir) -> bool:

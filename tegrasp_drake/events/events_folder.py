@@ -16,9 +16,10 @@ from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.events.event_file import (
     FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
-    remake_advice, event_json_text, event_summary, event_to_json, has_index, read_index,
-    read_memorized_event)
+    remake_advice, event_json_text, event_problem, event_summary, event_to_json, has_index,
+    read_index, read_memorized_event)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
+from tegrasp_drake.events.one_grasp import object_events_problem
 from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
                                               transition_order)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
@@ -89,9 +90,11 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
 
     Each object given replaces its previous events (stale files removed); keep_other_objects
     keeps the other objects' index entries. Every object needs the `required` transitions;
-    no events at all is refused (ValueError). The folder is held while it is read and written
-    (held_events_folder): a save while another process saves or records there is refused
-    (EventsFolderHeldError, an EventsDestinationError)."""
+    no events at all is refused (ValueError), and so are events that load_memorized_events
+    would refuse once saved (UnreadableEventsError, a ValueError), before anything is
+    written. The folder is held while it is read and written (held_events_folder): a save
+    while another process saves or records there is refused (EventsFolderHeldError, an
+    EventsDestinationError)."""
     events_dir = pathlib.Path(events_dir)
     events = _sorted_events(events)
     if not events:
@@ -105,9 +108,33 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
         missing = [t for t in required if (object_name, t) not in keys]
         if missing:
             raise ValueError(f"object '{object_name}' lacks transitions {missing}")
+    _refuse_unreadable(events_dir, events, objects)
     check_events_destination(events_dir, objects, keep_other_objects=keep_other_objects)
     with held_events_folder(events_dir):
         return _save_held(events_dir, events, objects, keep_other_objects)
+
+
+class UnreadableEventsError(ValueError):
+    """Events that the folder's reader would refuse, so save_memorized_events does not write
+    them; the message names the event's file and field and what is wrong."""
+
+
+def _refuse_unreadable(events_dir: pathlib.Path, events: list[MemorizedEvent],
+                       objects: list[str]) -> None:
+    """UnreadableEventsError for the first of `events` that load_memorized_events would refuse
+    once saved, by the reader's own checks: each event's (event_file.event_problem) and each
+    object's events together (one_grasp.object_events_problem)."""
+    for event in events:
+        problem = event_problem(event)
+        if problem:
+            raise UnreadableEventsError(
+                f"{events_dir / event.relative_path()}: {problem}; nothing was saved")
+    for object_name in objects:
+        refused = object_events_problem(e for e in events if e.object_name == object_name)
+        if refused:
+            event, problem = refused
+            raise UnreadableEventsError(
+                f"{events_dir / event.relative_path()}: {problem}; nothing was saved")
 
 
 def _save_held(events_dir: pathlib.Path, events: list[MemorizedEvent], objects: list[str],
@@ -200,13 +227,10 @@ def load_memorized_events(events_dir: PathLike, object_name: str, *,
             f"no memorized events for object '{object_name}' (it lists {objects})",
             object_name)
     events = _sorted_events(_load_entry(events_dir, entry) for entry in entries)
-    windows = {(e.window_s, e.sa_rate_hz, e.ra_rate_hz): e for e in events}
-    if len(windows) > 1:
-        shown = "; ".join(f"{e.relative_path()}: {w:g} s at {sa:g}/{ra:g} Hz"
-                          for (w, sa, ra), e in windows.items())
-        raise MemorizedEventError(
-            events_dir / INDEX_FILE, f"the events of '{object_name}' have different windows "
-            f"or rates (SA/RA), which one matcher cannot use ({shown})", object_name)
+    refused = object_events_problem(events)
+    if refused:
+        event, problem = refused
+        raise MemorizedEventError(events_dir / event.relative_path(), problem, object_name)
     missing = [t for t in required if t not in {e.transition for e in events}]
     if missing:
         raise MemorizedEventError(

@@ -93,18 +93,9 @@ def extract_memorized_events(
             window_s=window_s, pre_transition_s=pre_transition_s, transition_time_s=time,
             scenario=scenario, package_versions=versions,
             object_description=object_description or {})
-        zero = event.zero_channels()
-        if zero:
-            raise ValueError(f"{what}: channels {zero} are zero throughout the window; "
-                             "Eq. 3 could never match them")
-        turned = event.negative_peak()
-        if turned:  # what the event files' reader refuses is never written
-            from tegrasp_drake.events.event_file import negative_peak_problem
-            raise ValueError(f"{what}: {negative_peak_problem(*turned)}")
-        falling = event.falling_first_contact()
-        if falling:  # the same: the reader refuses it
-            from tegrasp_drake.events.event_file import falling_first_contact_problem
-            raise ValueError(f"{what}: {falling_first_contact_problem(*falling)}")
+        problem = event.shape_problem()
+        if problem:  # what the event files' reader refuses is never cut
+            raise ValueError(f"{what}: {problem}")
         events[name] = event
     return events
 

@@ -147,6 +147,32 @@ class MemorizedEvent:
                 return name, mean_before, mean_after
         return None
 
+    def shape_problem(self) -> str | None:
+        """Why these windows are no recording's, in words naming the channel, else None: a
+        channel zero throughout (zero_channels), a negative peak (negative_peak), a first
+        contact whose force falls (falling_first_contact). What the event files' reader
+        refuses, and what extraction never cuts."""
+        zero = self.zero_channels()
+        if zero:
+            return (f"channels {zero} are zero throughout the window: Eq. 3 could never "
+                    "match them")
+        turned = self.negative_peak()
+        if turned:
+            channel, index, value = turned
+            return (f"field 'samples.{channel}' sample {index} is {number_text(value)}, the "
+                    "window's peak, but no sample is +1: max-normalising divides by the "
+                    "peak's magnitude, so a recorded window's peak is the force or vibration "
+                    "the pad felt, +1, and a negative peak is no window a recording gives "
+                    "(turned over or edited)")
+        falling = self.falling_first_contact()
+        if falling:
+            channel, before, after = falling
+            return (f"field 'samples.{channel}' peaks before the first contact and falls "
+                    f"through it (mean {number_text(before)} before, {number_text(after)} "
+                    "after): at first contact a pad's force rises, so this window is no "
+                    "recording's (reversed in time or edited)")
+        return None
+
     def relative_path(self) -> str:
         """Path of the event's file inside the events folder."""
         return f"{self.object_name}/{self.transition}.json"

@@ -19,6 +19,9 @@ TRANSITIONS = {
 REQUIRED_TRANSITIONS = ("reach_load", "load_lift", "place_unload")
 # The corrective events a corrective events folder holds for each object, in order.
 CORRECTIVE_TRANSITIONS = ("lift_load", "hold_avoid")
+# The transitions of the grasp itself, in grasp order: an object's events of these come from
+# one grasp (one_grasp.py); each corrective event comes from runs of its own.
+GRASP_TRANSITIONS = tuple(name for name in TRANSITIONS if name not in CORRECTIVE_TRANSITIONS)
 
 
 def transition_order(name: str) -> int:

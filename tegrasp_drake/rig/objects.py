@@ -248,8 +248,10 @@ def description_problem(description: dict) -> str | None:
     return None
 
 
-def description_differences(recorded: dict, current: dict, *, rtol: float = 1e-9) -> list[str]:
-    """The fields in which two object descriptions differ, in words ("mass 0.15 != 0.12")."""
+def description_differences(recorded: dict, current: dict, *, rtol: float = 1e-9,
+                            labels: tuple[str, str] = ("recorded", "now")) -> list[str]:
+    """The fields in which two object descriptions differ, in words naming both values and
+    their `labels` ("mass 0.15 (recorded) != 0.12 (now)")."""
     differences = []
     for name in DESCRIPTION_FIELDS:
         a, b = recorded.get(name), current.get(name)
@@ -260,7 +262,7 @@ def description_differences(recorded: dict, current: dict, *, rtol: float = 1e-9
         else:
             same = a == b
         if not same:
-            differences.append(f"{name} {a!r} (recorded) != {b!r} (now)")
+            differences.append(f"{name} {a!r} ({labels[0]}) != {b!r} ({labels[1]})")
     return differences
 
 

@@ -131,7 +131,8 @@ def memorized_events(object_name="mine", sa_rate_hz=108.0, seed=0):
         return values / values.max(axis=1, keepdims=True)
     return [MemorizedEvent(object_name=object_name, transition=transition,
                            sa=window(sa_rate_hz), ra=window(1000.0), sa_rate_hz=sa_rate_hz,
-                           ra_rate_hz=1000.0) for transition in REQUIRED_TRANSITIONS]
+                           ra_rate_hz=1000.0, transition_time_s=1.0 + k)  # in grasp order
+            for k, transition in enumerate(REQUIRED_TRANSITIONS)]
 
 
 def channels_of(arrays) -> np.ndarray:

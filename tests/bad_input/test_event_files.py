@@ -31,13 +31,20 @@ def _drop_index_entry(folder):
         e for e in data["events"] if (e["object"], e["transition"]) != ("box", "load_lift")]))
 
 
+def _as_box(scenario: str) -> str:
+    return scenario.replace("name: thick_cylinder", "name: box", 1)
+
+
 def _copy_other_objects_events(folder):
-    """The thick cylinder's well-formed events copied in as the box's."""
+    """The thick cylinder's well-formed events copied in as the box's (their scenario's object
+    renamed too, so that each file is whole)."""
     for file in (folder / "thick_cylinder").glob("*.json"):
         shutil.copy(file, folder / "box" / file.name)
-        edit_json(folder / "box" / file.name, lambda data: data.update(object="box"))
+        edit_json(folder / "box" / file.name, lambda data: data.update(
+            object="box", scenario=_as_box(data["scenario"])))
     edit_json(folder / "index.json", lambda data: data.update(events=[
-        dict(e, object="box", file=e["file"].replace("thick_cylinder", "box"))
+        dict(e, object="box", file=e["file"].replace("thick_cylinder", "box"),
+             scenario=_as_box(e["scenario"]))
         if e["object"] == "thick_cylinder" else e
         for e in data["events"] if e["object"] != "box"]))
 
@@ -128,11 +135,20 @@ def test_events_of_a_changed_builtin_object_are_refused_unless_accepted(capfd):
 
 
 def test_events_of_one_object_with_different_rates_are_refused(tmp_path):
+    from tegrasp_drake.events.event_file import event_json_text, event_to_json
+    from tegrasp_drake.events.events_folder import UnreadableEventsError
     mixed = memorized_events(sa_rate_hz=108.0)[:2] + memorized_events(sa_rate_hz=1000.0)[2:]
-    save_memorized_events(tmp_path, mixed)
+    with pytest.raises(UnreadableEventsError, match="different windows or rates"):
+        save_memorized_events(tmp_path, mixed)
+    assert not (tmp_path / INDEX_FILE).exists()
+    save_memorized_events(tmp_path, mixed[:2] + memorized_events(sa_rate_hz=108.0)[2:])
+    for event in mixed[2:]:  # the other rate's files written in by hand
+        (tmp_path / event.relative_path()).write_text(event_json_text(event_to_json(event)))
+    edit_json(tmp_path / INDEX_FILE, lambda data: [
+        entry.update(sa_rate_hz=1000.0) for entry in data["events"]
+        if entry["transition"] in {e.transition for e in mixed[2:]}])
     with pytest.raises(MemorizedEventError, match="different windows or rates"):
         load_memorized_events(tmp_path, "mine")
-    assert (tmp_path / INDEX_FILE).is_file()
 
 
 def test_a_deeply_nested_index_is_one_line(tmp_path, capfd):
@@ -375,7 +391,7 @@ def test_recording_never_writes_a_first_contact_whose_force_falls():
 ])
 def test_an_event_whose_transition_lies_past_its_recorded_run_is_refused(
         folder, time, words, events_copy, no_simulation, capfd):
-    path = events_copy / folder / "reach_load.json"
+    path = events_copy / folder / "place_unload.json"  # the last: in grasp order still
     edit_json(path, lambda data: data.update(transition_time_s=time))
     argv = (["trial", "--events", str(events_copy)] if folder == "box" else
             ["trial", "--controller", "taxel_aware", "--events", str(events_copy)])
@@ -469,3 +485,80 @@ def test_a_required_transition_that_does_not_exist_is_the_arguments_fault():
     with pytest.raises(ValueError, match="argument 'required' names 'bogus', no transition; "
                                          "the transitions are reach_load, "):
         load_memorized_events(paths.package_events_dir(), "box", required=["bogus"])
+
+
+# Rule: an object's grasp events in one folder are cut from one ideal grasp: their
+# transition_time_s increase in grasp order, and they carry that grasp's scenario text, whose
+# object is the one each file names (object, object_description). A folder that breaks this
+# is refused naming the file and the field, by a trial before it runs and by
+# `tegrasp plot events`, exit 1.
+def _set_in_box_file(transition: str, edit):
+    """A spoil that applies `edit` to the box's `transition` file and its index entry."""
+    def spoil(folder):
+        edit_json(folder / "box" / f"{transition}.json", edit)
+        edit_json(folder / INDEX_FILE, lambda data: [
+            edit(entry) for entry in data["events"]
+            if (entry["object"], entry["transition"]) == ("box", transition)])
+    return spoil
+
+
+def _in_scenario(old: str, new: str):
+    def edit(data):
+        assert old in data["scenario"]
+        data["scenario"] = data["scenario"].replace(old, new, 1)
+    return edit
+
+
+def _in_every_box_scenario(old: str, new: str):
+    def spoil(folder):
+        for transition in ("reach_load", "load_lift", "place_unload"):
+            _set_in_box_file(transition, _in_scenario(old, new))(folder)
+    return spoil
+
+
+def _file_time(seconds: float):
+    return lambda data: data.update(transition_time_s=seconds) if "samples" in data else None
+
+
+@pytest.mark.parametrize("spoil, file, expected", [
+    (_set_in_box_file("place_unload", _file_time(1.0)), "place_unload.json",
+     "field 'transition_time_s' is 1 s, not after load_lift's"),
+    (_set_in_box_file("load_lift", _file_time(2.0)), "load_lift.json",
+     "field 'transition_time_s' is 2 s, not after reach_load's"),
+    (_in_every_box_scenario("mass: 0.15", "mass: 0.5"), "reach_load.json",
+     "mass 0.5 (field 'scenario') != 0.15 (field 'object_description')"),
+    (_in_every_box_scenario("  name: box", "  name: thin_cylinder"), "reach_load.json",
+     "field 'scenario' grasps object 'thin_cylinder', but field 'object' is 'box'"),
+    (_set_in_box_file("load_lift", _in_scenario("random_seed: 0", "random_seed: 5")),
+     "load_lift.json", "field 'scenario' differs from reach_load's (line 1: 'random_seed: 5'"),
+    (_set_in_box_file("load_lift", _in_scenario("hit_time_s: -1.0", "hit_time_s: 4.0")),
+     "load_lift.json", "'  hit_time_s: 4.0' here, '  hit_time_s: -1.0' there"),
+])
+def test_an_objects_events_that_no_one_grasp_gives_are_refused(spoil, file, expected,
+                                                               events_copy, no_simulation,
+                                                               capfd):
+    spoil(events_copy)
+    path = events_copy / "box" / file
+    code, text = run_cli(["trial", "--events", str(events_copy)], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, str(path), expected, "Remake it with")
+    code, text = run_cli(["plot", "events", "--events", str(events_copy), "--out",
+                          str(events_copy / "p.png")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, str(path), expected)
+    assert not (events_copy / "p.png").exists()
+
+
+# Rule: corrective events come from runs of their own, one per situation: an object's
+# corrective events keep their own scenario text and times, which the one-grasp rule leaves
+# alone; they still share the object's description, window and rates.
+def test_an_objects_corrective_events_need_not_share_a_grasp_but_an_object(events_copy):
+    corrective = events_copy / "corrective"
+    events = load_memorized_events(corrective, "box", required=("lift_load", "hold_avoid"))
+    assert events["lift_load"].scenario != events["hold_avoid"].scenario
+    _set_in_box_file("hold_avoid", lambda data: data["object_description"].update(
+        mass=0.2))(corrective)
+    with pytest.raises(MemorizedEventError,
+                       match=r"hold_avoid.json: field 'object_description' differs from "
+                             r"lift_load's: mass 0.2 \(here\) != 0.15"):
+        load_memorized_events(corrective, "box", required=("lift_load", "hold_avoid"))

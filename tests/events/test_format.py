@@ -256,3 +256,38 @@ def test_the_format_page_states_the_version_record_events_writes():
     assert written == [str(FORMAT_VERSION)], written
     listed = re.findall(r"^- (\d+)[: ]", page.split("## Versions", 1)[1], flags=re.M)
     assert listed and int(listed[0]) == FORMAT_VERSION, listed
+
+
+# Rule: save_memorized_events writes only what load_memorized_events reads back: it asks the
+# reader's own checks of the events it is given (each file's, and each object's events as one
+# grasp) and refuses before anything in the folder is replaced.
+def _package_events(object_name):
+    from tegrasp_drake.events.events_folder import load_memorized_events
+    from tegrasp_drake.rig import paths
+    return load_memorized_events(paths.package_events_dir(), object_name)
+
+
+@pytest.mark.parametrize("mix, expected", [
+    (lambda box, thin: [box["reach_load"], dataclasses.replace(thin["load_lift"],
+                                                                object_name="box"),
+                        box["place_unload"]],
+     "load_lift.json: field 'scenario' grasps object 'thin_cylinder', but field 'object' is "
+     "'box'"),
+    (lambda box, thin: [dataclasses.replace(box["reach_load"], transition_time_s=9.0),
+                        box["load_lift"], box["place_unload"]],
+     "load_lift.json: field 'transition_time_s' is 4.6 s, not after reach_load's 9 s"),
+    (lambda box, thin: [box["reach_load"], box["load_lift"], dataclasses.replace(
+        box["place_unload"], scenario=box["place_unload"].scenario.replace(
+            "random_seed: 0", "random_seed: 5", 1))],
+     "place_unload.json: field 'scenario' differs from reach_load's"),
+])
+def test_saving_refuses_events_the_reader_refuses_and_keeps_the_folder(tmp_path, mix,
+                                                                       expected):
+    from tegrasp_drake.events.events_folder import UnreadableEventsError
+    box, thin = _package_events("box"), _package_events("thin_cylinder")
+    save_memorized_events(tmp_path, box.values())
+    before = {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()}
+    with pytest.raises(UnreadableEventsError, match=re.escape(expected)) as error:
+        save_memorized_events(tmp_path, mix(box, thin))
+    assert str(tmp_path / "box") in str(error.value) and "nothing was saved" in str(error.value)
+    assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before
