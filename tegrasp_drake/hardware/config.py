@@ -384,19 +384,38 @@ def device_update_periods(config: HardwareStationConfig) -> dict[str, float]:
             "tactile": FRAME_PERIOD_US * 1e-6}
 
 
+def watchdog_least_timeouts(config: HardwareStationConfig, prefix: str = ""
+                            ) -> list[tuple[str, float, str, str]]:
+    """[(device, the timeout [s] its watchdog timeout must exceed, why, what else may be
+    shortened instead, in words)]: more than WATCHDOG_MIN_PERIODS of its update periods
+    (device_update_periods), so that one late update never trips it; for the gripper also
+    more than one unanswered request (its request_timeout) and then WATCHDOG_MIN_PERIODS
+    reads, so that one lost answer never does. The arm's and the myRIO's periods are their
+    protocols' (no field sets them), and neither has a request to wait for."""
+    rows = [(device, WATCHDOG_MIN_PERIODS * period,
+             f"{WATCHDOG_MIN_PERIODS} of the {device}'s updates ({number_text(period)} s each)"
+             f", so the watchdog would stop the run on the first late one", "")
+            for device, period in device_update_periods(config).items()]
+    gripper = config.gripper
+    rows.append(("gripper", gripper.request_timeout + WATCHDOG_MIN_PERIODS * gripper.period,
+                 f"one unanswered request (field '{prefix}gripper.request_timeout', "
+                 f"{number_text(gripper.request_timeout)} s) and then {WATCHDOG_MIN_PERIODS} "
+                 f"of the gripper's reads ({number_text(gripper.period)} s each), so the "
+                 "watchdog would stop the run on the first lost answer",
+                 f", or a shorter '{prefix}gripper.request_timeout'"))
+    return rows
+
+
 def watchdog_timeouts_problem(config: HardwareStationConfig, prefix: str = "") -> str | None:
     """"field 'watchdog.<device>_timeout' ..." when a device's watchdog timeout is not longer
-    than WATCHDOG_MIN_PERIODS of its update periods (it would trip on the first late sample,
-    at once), else None."""
-    for device, period in device_update_periods(config).items():
+    than what the device's own timing lets it be silent for (watchdog_least_timeouts), else
+    None."""
+    for device, least, why, other in watchdog_least_timeouts(config, prefix):
         timeout = config.watchdog.timeouts()[device]
-        least = WATCHDOG_MIN_PERIODS * period
         if not timeout > least:
             return (f"field '{prefix}watchdog.{device}_timeout' is {number_text(timeout)} s, not "
-                    f"longer than {WATCHDOG_MIN_PERIODS} of the {device}'s updates "
-                    f"({number_text(period)} s each), so the watchdog would stop the run on "
-                    f"the first late one: give more than {number_text(least)} s (default "
-                    f"{number_text(DeviceWatchdogConfig().timeouts()[device])} s)")
+                    f"longer than {why}: give more than {number_text(least)} s (default "
+                    f"{number_text(DeviceWatchdogConfig().timeouts()[device])} s){other}")
     return None
 
 

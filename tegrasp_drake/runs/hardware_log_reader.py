@@ -15,24 +15,26 @@ from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
-from tegrasp_drake.rig.ranges import field_range
+from tegrasp_drake.rig.ranges import check_ranges, field_range
 from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError, JsonValueError,
                                      file_problem, load_json, one_line, read_bounded)
 from tegrasp_drake.hardware.config import HardwareStationConfig
+from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
     TRANSITION_CHANNEL, tactile_arrays)
-from tegrasp_drake.hardware.myrio.tactile_calibration import (COUNT_MAX,
-                                                              MAX_TAXEL_GAIN_N_PER_COUNT)
+from tegrasp_drake.hardware.myrio.tactile_calibration import (
+    COUNT_MAX, MAX_TAXEL_GAIN_N_PER_COUNT, PIEZO_INPUT_V, PadCalibration)
+from tegrasp_drake.hardware.myrio.tactile_frame import RESTART_RUN
 from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL,
                                                 check_jaco_status_message)
 from tegrasp_drake.hardware.message_boundary import RejectedMessage
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, parse_yaml
 from tegrasp_drake.scenario.scenario import scenario_from_yaml
-from tegrasp_drake.scenario.trial_log_file import widest_configs
+from tegrasp_drake.scenario.trial_log_file import sensor_bounds, widest_configs
 from tegrasp_drake.simulation.tactile_pads import taxel_reading_range
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
@@ -52,6 +54,14 @@ class RunLogError(ValueError):
         super().__init__(one_line(message))
 
 
+@dataclasses.dataclass(frozen=True)
+class TactileSegment:
+    """A stretch of a run's tactile stream that the matcher replays in one go: its channels
+    (times in the run's Context time [s]) and the time [s] its replay starts from."""
+    origin: float
+    trial: TactileTrial
+
+
 @dataclasses.dataclass
 class RunLog:
     """What a hardware run's LCM log holds (module docstring)."""
@@ -67,6 +77,7 @@ class RunLog:
     damage: list = dataclasses.field(default_factory=list)  # what was lost, in words
     scenario: object = None  # the run's Scenario (logged_scenario), None if not logged
     scenario_problem: str | None = None  # why a logged scenario_yaml was not read (damage)
+    tactile_timeout: float = DEFAULT_TIMEOUTS["tactile"]  # [s] the run's tactile watchdog's
 
     def damage_text(self) -> str:
         """One line: what was read and what was lost ("" for an intact log)."""
@@ -88,15 +99,44 @@ class RunLog:
     def tactile_trial(self) -> TactileTrial:
         """The SA and RA channels the controller computed from the logged tactile ports,
         at the receiver's ticks (repeated ticks dropped)."""
+        return self._channels(*self._usable_ticks())
+
+    def tactile_segments(self) -> list[TactileSegment]:
+        """tactile_trial cut at the stream's silences longer than the tactile watchdog's
+        timeout (tactile_stretches), the stretches of fewer than 2 ticks left out, each
+        replayed from its first tick (the first from the run's start, Context time 0, when it
+        starts within the timeout of it): the replay steps through the logged ticks, never
+        through a silence, so its cost follows the messages read, not the time they span."""
+        t, keep = self._usable_ticks()
+        segments = []
+        for k, stretch in enumerate(tactile_stretches(t, self.tactile_timeout)):
+            if stretch.stop - stretch.start < 2:
+                continue
+            origin = 0.0 if k == 0 and t[0] <= self.tactile_timeout else float(t[stretch][0])
+            segments.append(TactileSegment(origin, self._channels(t[stretch], keep[stretch])))
+        if not segments:
+            raise self._nothing_to_replay(
+                f"no 2 tactile messages within the tactile watchdog's timeout, "
+                f"{number_text(self.tactile_timeout)} s, of each other to replay", len(t))
+        return segments
+
+    def _usable_ticks(self) -> tuple[np.ndarray, np.ndarray]:
+        """The logged tactile ticks' times [s], repeated ones dropped, and their rows."""
         t, keep = np.unique(self.tactile["t"], return_index=True)
         if len(t) < 2:
-            logged = self.message_counts.get(TACTILE_CHANNEL, 0)
-            why = f": {'; '.join(self.damage)}" if self.damage else ""
-            raise RunLogError(f"run log '{self.path}' has fewer than 2 tactile messages to "
-                              f"replay ({len(t)} usable of {logged} on {TACTILE_CHANNEL})"
-                              + why)
-        taxels = self.tactile["taxels"][keep]
-        acceleration = self.tactile["pad_acceleration"][keep]
+            raise self._nothing_to_replay("fewer than 2 tactile messages to replay", len(t))
+        return t, keep
+
+    def _nothing_to_replay(self, what: str, usable: int) -> RunLogError:
+        why = f": {'; '.join(self.damage)}" if self.damage else ""
+        return RunLogError(f"run log '{self.path}' has {what} ({usable} usable of "
+                           f"{self.message_counts.get(TACTILE_CHANNEL, 0)} on "
+                           f"{TACTILE_CHANNEL})" + why)
+
+    def _channels(self, t: np.ndarray, rows: np.ndarray) -> TactileTrial:
+        """The SA and RA channels of the tactile messages `rows`, at their times `t` [s]."""
+        taxels = self.tactile["taxels"][rows]
+        acceleration = self.tactile["pad_acceleration"][rows]
         sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),
                               taxels[:, TAXELS_PER_PAD:].sum(axis=1)])
         ra = np.column_stack([np.linalg.norm(acceleration[:, :3], axis=1),
@@ -172,7 +212,7 @@ def _duration_text(microseconds: int) -> str:
     seconds = microseconds * 1e-6
     if seconds < 1.0:
         return f"{seconds * 1e3:.3g} ms"
-    for unit, size in (("years", _YEAR_S), ("days", 86400), ("h", 3600)):
+    for unit, size in (("years", _YEAR_S), ("days", 86400), ("h", 3600), ("min", 60)):
         if seconds >= size:
             return f"{seconds / size:.3g} {unit}"
     return f"{seconds:.3g} s"
@@ -289,7 +329,6 @@ def _scan_lcm_bytes(data: bytes) -> tuple[list, list[str]]:
     return events, damage
 
 
-MAX_TACTILE_VALUE = 1e6  # [m/s^2]: no film reads this much (taxels: taxel_force_range)
 TIME_NEIGHBOURS = 5  # messages on each side whose median time a message's is compared with
 MAX_TIME_OUTLIER_S = 1.0
 
@@ -423,12 +462,24 @@ def taxel_force_range(scenario) -> tuple[float, float]:
     return min(low for low, _ in ranges), max(high for _, high in ranges)
 
 
-def _plausible_tactile(messages: list, taxel_range: tuple[float, float]) -> tuple[list, int]:
+def pad_acceleration_bound(scenario) -> float:
+    """The largest |pad acceleration| [m/s^2] a run's TEGRASP_TACTILE can hold: the full scale
+    of the RA transducer of `scenario` (the run's Scenario), the bound the trial-log reader
+    holds a trial's pad accelerations to (trial_log_file.sensor_bounds; for None, the widest
+    of any scenario's), or the myRIO's, its piezo input's full scale at the default
+    calibration's gain (PadCalibration.piezo_gain), if larger."""
+    device = PadCalibration().piezo_gain * PIEZO_INPUT_V
+    return max(sensor_bounds(scenario, 0.0).pad_acceleration, device)
+
+
+def _plausible_tactile(messages: list, taxel_range: tuple[float, float],
+                       acceleration_bound: float) -> tuple[list, int]:
     """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
     were not. LCM logs carry no checksum, so a flipped byte shows only as an impossible value:
     not finite, a taxel force outside `taxel_range` [N] (taxel_force_range), an acceleration
-    beyond MAX_TACTILE_VALUE, not 12 taxels, a time more than MAX_TIME_OUTLIER_S from its
-    neighbours' median (1 ms ticks) or before the previous message's."""
+    beyond `acceleration_bound` [m/s^2] (pad_acceleration_bound), not 12 taxels, a time more
+    than MAX_TIME_OUTLIER_S from its neighbours' median (1 ms ticks) or before the previous
+    message's."""
     low, high = taxel_range
     values_ok = []
     for _, message in messages:
@@ -441,7 +492,7 @@ def _plausible_tactile(messages: list, taxel_range: tuple[float, float]) -> tupl
                          and bool(np.all(np.isfinite(accelerations)))
                          and bool(np.all((forces >= low) & (forces <= high)))
                          and float(np.max(np.abs(accelerations), initial=0.0))
-                         <= MAX_TACTILE_VALUE)
+                         <= acceleration_bound)
     times = np.array([message.utime * 1e-6 for _, message in messages])
     kept, last = [], -np.inf
     for k, (wall, message) in enumerate(messages):
@@ -451,6 +502,92 @@ def _plausible_tactile(messages: list, taxel_range: tuple[float, float]) -> tupl
             kept.append((wall, message))
             last = times[k]
     return kept, len(messages) - len(kept)
+
+
+def device_time_damage(device_utimes) -> str | None:
+    """What is wrong with the device times (device_utime [us], the myRIO frame timestamps the
+    host unwrapped, in message order) of a log's TEGRASP_TACTILE messages, in words, else
+    None. The host unwraps the myRIO's 32-bit microsecond clock (TACTILE_FRAME.md), so device
+    time never goes back but where the device restarted: the decoder then follows the new
+    stream once RESTART_RUN of its frames follow each other, and the device streams on. A step
+    back after which the device time does not run forward through RESTART_RUN frames before
+    it steps back again is no restart: frames from elsewhere, or corrupt bytes."""
+    device = np.asarray(device_utimes, dtype=np.int64)
+    backs = np.flatnonzero(np.diff(device) < 0) + 1
+    ends = np.append(backs[1:], len(device))
+    wrong = [k for k, end in zip(backs, ends)
+             if end < len(device) and len(np.unique(device[k:end])) < RESTART_RUN]
+    if not wrong:
+        return None
+    first = wrong[0]
+    return (f"the device times (device_utime, the myRIO's clock) of {len(wrong)} message(s) "
+            f"on {TACTILE_CHANNEL} go back (the first, message {first + 1} of {len(device)}, "
+            f"by {_duration_text(int(device[first - 1] - device[first]))}) without the "
+            f"{RESTART_RUN} frames running forward after it that a restarted myRIO streams: "
+            "frames from elsewhere, or corrupt bytes; the messages are kept")
+
+
+def logged_hardware_config(info: lcmt_tegrasp_run_info | None):
+    """(the HardwareStationConfig of a run's TEGRASP_RUN_INFO hardware_yaml, None); (None,
+    None) when it holds none; or (None, what is wrong) when the text is not one (bytes that
+    are not UTF-8, or the field that does not load), as logged_scenario. Only its fields are
+    read and checked against their ranges: its devices and LCM URL are the recording host's."""
+    if info is None or not info.hardware_yaml:
+        return None, None
+    text = info.hardware_yaml
+    problem = _not_utf8_problem(text)
+    if problem:
+        return None, problem
+    source = "its hardware_yaml"
+    try:
+        data = parse_yaml(text, source)
+        if not isinstance(data, dict):
+            return None, f"is not a hardware config (a mapping of fields), got {shorten(text)}"
+        config = load_typed(data, HardwareStationConfig, source, stored=True)
+        check_ranges(config, source)
+    except ConfigError as e:
+        return None, f"is not a hardware config ({shorten(one_line(str(e)), 300)})"
+    return config, None
+
+
+def tactile_watchdog_timeout(config: HardwareStationConfig | None) -> float:
+    """[s] The tactile watchdog's timeout of a run's hardware config (logged_hardware_config),
+    the default for None."""
+    return config.watchdog.tactile_timeout if config is not None else DEFAULT_TIMEOUTS["tactile"]
+
+
+def tactile_stretches(times, timeout: float) -> list[slice]:
+    """The stretches of a run's tactile stream (TEGRASP_TACTILE Context times [s], in order)
+    between its silences longer than `timeout` [s] (tactile_watchdog_timeout), each a slice of
+    `times`; the run's start, Context time 0, counts as the stream's first message."""
+    times = np.asarray(times, dtype=float)
+    cuts = (np.flatnonzero(np.diff(times) > timeout) + 1).tolist()
+    bounds = [0, *cuts, len(times)]
+    return [slice(start, end) for start, end in zip(bounds, bounds[1:]) if end > start]
+
+
+def tactile_silence_damage(times, timeout: float) -> str | None:
+    """Words for the silences of a run's tactile stream (TEGRASP_TACTILE Context times [s], in
+    order) longer than `timeout` [s], the tactile watchdog's, counted from the run's start at
+    Context time 0, else None. The station publishes a message every TACTILE_PUBLISH_PERIOD
+    tick, stale or not, for as long as the run lasts, and its watchdog stops a run whose tactile
+    data stop for `timeout`: a longer silence is messages lost or logs joined."""
+    times = np.asarray(times, dtype=float)
+    if not len(times):
+        return None
+    steps = np.diff(np.concatenate([[min(0.0, times[0])], times]))
+    silent = np.flatnonzero(steps > timeout)
+    if not silent.size:
+        return None
+    longest = silent[np.argmax(steps[silent])]
+    start = times[longest - 1] if longest else 0.0
+    return (f"the tactile stream (a {TACTILE_CHANNEL} message every "
+            f"{_duration_text(round(TACTILE_PUBLISH_PERIOD * 1e6))}) is silent for longer than "
+            f"the tactile watchdog's timeout, {number_text(timeout)} s, in {silent.size} "
+            f"place(s), the longest {_duration_text(round(steps[longest] * 1e6))} from "
+            f"{number_text(float(start))} s (messages lost, or logs joined: the run's watchdog "
+            "stops a run that long without tactile data); the matcher is replayed on the "
+            "stretches between them, not through them")
 
 
 def check_run_info(info: lcmt_tegrasp_run_info, path) -> None:
@@ -604,18 +741,29 @@ def read_run_log(path) -> RunLog:
                 "bytes); the run's object is its object_name, the matcher's settings the "
                 "defaults (give --object to match another object's events)")
         damage += run_info_damage([message for _, message in info], scenario)
-    taxel_range = taxel_force_range(scenario)
-    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range)
+    hardware, hardware_problem = logged_hardware_config(run_info)
+    if hardware_problem:
+        damage.append(f"its {RUN_INFO_CHANNEL} field 'hardware_yaml' {hardware_problem} "
+                      "(corrupt bytes); the tactile watchdog's default timeout is used")
+    taxel_range, acceleration_bound = taxel_force_range(scenario), pad_acceleration_bound(scenario)
+    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range,
+                                                       acceleration_bound)
     if implausible:
-        whose = ("its scenario's" if scenario is not None else "any scenario's") + " or a pad's"
+        whose = "its scenario's" if scenario is not None else "any scenario's"
         damage.append(
             f"{implausible} message(s) on {TACTILE_CHANNEL} hold impossible values (not "
             f"finite, taxel forces outside {number_text(taxel_range[0])} to "
-            f"{number_text(taxel_range[1])} N, what {whose} taxels can read, accelerations "
-            "beyond 1e6 m/s^2, or time going back: corrupt bytes); skipped")
+            f"{number_text(taxel_range[1])} N, what {whose} or a pad's taxels can read, "
+            f"accelerations beyond {number_text(acceleration_bound)} m/s^2, the full scale of "
+            f"{whose} or the myRIO's RA transducer, or time going back: corrupt bytes); "
+            "skipped")
     decoded[TACTILE_CHANNEL] = tactile_messages
     tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
     tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
+    tactile_timeout = tactile_watchdog_timeout(hardware)
+    damage += [problem for problem in (
+        device_time_damage([message.device_utime for _, message in decoded[TACTILE_CHANNEL]]),
+        tactile_silence_damage(tactile["t"], tactile_timeout)) if problem]
     # The transitions' Context times lie within the tactile stream's, published every tick
     # from the start of the run to its end (one tick's tolerance each side).
     span = ((tactile["t"][0] - TACTILE_PUBLISH_PERIOD, tactile["t"][-1] + TACTILE_PUBLISH_PERIOD)
@@ -639,4 +787,4 @@ def read_run_log(path) -> RunLog:
         gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
         arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],
         message_counts=counts, damage=damage, scenario=scenario,
-        scenario_problem=scenario_problem)
+        scenario_problem=scenario_problem, tactile_timeout=tactile_timeout)

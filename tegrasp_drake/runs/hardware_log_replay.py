@@ -1,7 +1,8 @@
 """The event matcher re-run offline on a hardware run's LCM log (`tegrasp replay LOG`):
 the SA and RA channels computed from TEGRASP_TACTILE as the controller did, matched against
 the object's memorized events two ways (per logged mode, and in grasp order; events/replay.py),
-with the run's own matcher settings (TEGRASP_RUN_INFO), else the defaults."""
+with the run's own matcher settings (TEGRASP_RUN_INFO), else the defaults; on each stretch of
+the tactile stream between its silences (RunLog.tactile_segments), never through one."""
 
 import dataclasses
 import logging
@@ -21,10 +22,11 @@ from tegrasp_drake.events.events_folder import find_memorized_events
 from tegrasp_drake.events.replay import (EventReplay, live_matcher_config,
                                          channels_trajectory, replay_events_in_sequence)
 from tegrasp_drake.events.streaming_correlation import NO_EVENT
-from tegrasp_drake.events.transitions import transition_name
+from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_name
 from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
 from tegrasp_drake.rig import paths
-from tegrasp_drake.runs.hardware_log_reader import RunLog, RunLogError, read_run_log
+from tegrasp_drake.runs.hardware_log_reader import (RunLog, RunLogError, TactileSegment,
+                                                    read_run_log)
 from tegrasp_drake.scenario.scenario import resolve_object, sample_rates_hz, scenario_from_yaml
 from tegrasp_drake.scenario.scenario_events import check_events_object, check_recorded_runs
 
@@ -58,10 +60,16 @@ class ReplayedTransition:
         return None if self.match_time is None else self.match_time - self.logged_time
 
 
-def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
-                   config: EventMatcherConfig | None = None) -> list[ReplayedTransition]:
-    """Runs an EventMatcher over `trial`'s channels, wired as the live controller wires it,
-    with the expected event scheduled by `transitions`; one result per memorized transition."""
+def _shifted(trial: TactileTrial, origin: float) -> TactileTrial:
+    """`trial` with its times moved `origin` [s] earlier (a replay starts at time 0)."""
+    return dataclasses.replace(trial, t_sa=trial.t_sa - origin, t_ra=trial.t_ra - origin)
+
+
+def _matcher_samples(segment: TactileSegment, transitions: list[dict], events, config):
+    """(the expected event's schedule [(log time [s], event index)] of `transitions`, times
+    [s, log time], match, scores) of an EventMatcher run over one segment from its origin,
+    one row per ms."""
+    origin, trial = segment.origin, _shifted(segment.trial, segment.origin)
     builder = DiagramBuilder()
     channels = builder.AddSystem(TrajectorySource(channels_trajectory(trial)))
     matcher = add_event_matcher(builder, events, config, channels=channels.get_output_port())
@@ -71,8 +79,12 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
     schedule = [entry for k, entry in enumerate(schedule)
                 if k + 1 == len(schedule) or schedule[k + 1][0] > entry[0]]
     end = float(max(trial.t_sa[-1], trial.t_ra[-1]))
-    breaks = [t for t, _ in schedule] + [max(end, schedule[-1][0]) + 1.0]
-    values = np.array([[float(i) for _, i in schedule] + [float(NO_EVENT)]])
+    # the event expected at the segment's start, then each change within it
+    current = [entry for entry in schedule if entry[0] <= origin][-1:]
+    inside = [(t - origin, event) for t, event in schedule if origin < t <= origin + end]
+    steps = [(0.0, event) for _, event in current] + inside
+    breaks = [t for t, _ in steps] + [max(end, steps[-1][0]) + 1.0]
+    values = np.array([[float(i) for _, i in steps] + [float(NO_EVENT)]])
     expected = builder.AddSystem(TrajectorySource(
         PiecewisePolynomial.ZeroOrderHold(breaks, values)))
     builder.Connect(expected.get_output_port(), matcher.GetInputPort("expected_event"))
@@ -82,9 +94,20 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
     simulator = Simulator(builder.Build())
     simulator.AdvanceTo(end)
     context = simulator.get_context()
-    times = match_log.FindLog(context).sample_times()
-    match = match_log.FindLog(context).data()[0] > 0.5
-    scores = score_log.FindLog(context).data().T
+    return (schedule, match_log.FindLog(context).sample_times() + origin,
+            match_log.FindLog(context).data()[0] > 0.5, score_log.FindLog(context).data().T)
+
+
+def replay_matcher(segments: list[TactileSegment], transitions: list[dict], events, *,
+                   config: EventMatcherConfig | None = None) -> list[ReplayedTransition]:
+    """Runs an EventMatcher over each of `segments` (RunLog.tactile_segments), wired as the
+    live controller wires it, with the expected event scheduled by `transitions`, restarted
+    at each segment (its windows fill again); one result per memorized transition."""
+    samples = [_matcher_samples(segment, transitions, events, config) for segment in segments]
+    schedule = samples[0][0]
+    times = np.concatenate([t for _, t, _, _ in samples])
+    match = np.concatenate([m for _, _, m, _ in samples])
+    scores = np.concatenate([x for _, _, _, x in samples])
     results = []
     for (entered, event), transition in zip(schedule, transitions):
         if event == NO_EVENT:
@@ -100,6 +123,32 @@ def replay_matcher(trial: TactileTrial, transitions: list[dict], events, *,
         results.append(ReplayedTransition(name, entered, transition["t"], match_time,
                                           [float(x) for x in best]))
     return results
+
+
+def replay_in_sequence(segments: list[TactileSegment], events, *,
+                       config: EventMatcherConfig | None = None) -> EventReplay:
+    """replay_events_in_sequence over each of `segments` from its origin, the sequencer taking
+    up in each the events the ones before did not pass; its rows and times in log time."""
+    replays, fire_times = [], {transition: None for transition in REQUIRED_TRANSITIONS}
+    for segment in segments:
+        remaining = [name for name, fired in fire_times.items() if fired is None]
+        if not remaining:
+            break
+        replay = replay_events_in_sequence(_shifted(segment.trial, segment.origin), events,
+                                           remaining, config=config)
+        fire_times.update({name: None if fired is None else fired + segment.origin
+                           for name, fired in replay.fire_times.items()})
+        replays.append(dataclasses.replace(replay, times=replay.times + segment.origin))
+    first = replays[0]
+    return dataclasses.replace(
+        first, times=np.concatenate([r.times for r in replays]),
+        scores=np.concatenate([r.scores for r in replays]),
+        match=np.concatenate([r.match for r in replays]),
+        expected_event=np.concatenate([r.expected_event for r in replays]),
+        fire_times=fire_times,
+        **{field: {k: v for r in replays for k, v in getattr(r, field).items()}
+           for field in ("windows_at_match", "scores_at_match", "ra_peaks_at_match",
+                         "ra_floor_at_match")})
 
 
 def matcher_config_of_run(run_info, events, source: str = "the run's scenario", *,
@@ -189,14 +238,14 @@ def replay_run_log(path, *, object_name: str | None = None,
     config = matcher_config_of_run(None if log.scenario_problem else info, events,
                                    f"run log '{path}': its TEGRASP_RUN_INFO scenario",
                                    scenario=log.scenario)
-    trial = log.tactile_trial()
+    segments = log.tactile_segments()
     logger.debug(f"replay: the run's controller "
                  f"{info.controller if info and info.controller else 'not logged'}; the "
                  f"matcher's settings {config}")
-    logger.info(f"replay: the matcher re-run on {len(trial.t_ra)} tactile samples and "
-                f"{len(log.transitions)} logged transitions with the events of "
-                f"{object_name} from {events_dir}")
+    logger.info(f"replay: the matcher re-run on {sum(len(s.trial.t_ra) for s in segments)} "
+                f"tactile samples in {len(segments)} stretch(es) and {len(log.transitions)} "
+                f"logged transitions with the events of {object_name} from {events_dir}")
     return RunLogReplay(
         log=log, object_name=object_name, events_dir=events_dir,
-        transitions=replay_matcher(trial, log.transitions, events, config=config),
-        in_sequence=replay_events_in_sequence(trial, events, config=config))
+        transitions=replay_matcher(segments, log.transitions, events, config=config),
+        in_sequence=replay_in_sequence(segments, events, config=config))

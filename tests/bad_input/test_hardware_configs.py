@@ -256,6 +256,21 @@ def test_a_watchdog_timeout_within_two_device_updates_is_refused(device, least):
     assert f"give more than {least} s" in problem
 
 
+# Rule: one unanswered Modbus request (gripper.request_timeout) and two reads after it must
+# not trip the gripper's watchdog, as two of its read periods must not.
+def test_a_gripper_request_timeout_the_watchdog_cannot_wait_out_is_refused(tmp_path):
+    config = tmp_path / "hw.yaml"
+    config.write_text("gripper: {request_timeout: 0.5}\nwatchdog: {gripper_timeout: 0.1}\n")
+    with pytest.raises(ConfigError, match=re.escape(
+            "field 'watchdog.gripper_timeout' is 0.1 s, not longer than one unanswered request "
+            "(field 'gripper.request_timeout', 0.5 s)")) as refused:
+        LoadHardwareConfig(config)
+    assert "give more than 0.51 s" in str(refused.value)
+    assert "or a shorter 'gripper.request_timeout'" in str(refused.value)
+    config.write_text("gripper: {request_timeout: 0.5}\nwatchdog: {gripper_timeout: 0.6}\n")
+    assert LoadHardwareConfig(config).watchdog.gripper_timeout == 0.6
+
+
 def test_a_config_with_such_a_timeout_is_one_line(tmp_path, capfd):
     config = tmp_path / "hw.yaml"
     config.write_text("arm: {lcm_url: 'udpm://239.255.76.67:7667?ttl=0'}\n"

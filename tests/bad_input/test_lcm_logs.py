@@ -1,6 +1,8 @@
 """A hardware run's LCM log read by `tegrasp replay`: receive times that jump or go back,
 event numbers that do not increase, TEGRASP_RUN_INFO messages that are corrupt, differ or
-contradict the run, taxel forces no taxel reads, forged statuses and transitions from
+contradict the run, taxel forces no taxel reads, pad accelerations past the RA transducer's
+full scale, device times that go back, tactile silences past the watchdog's timeout (never
+stepped through by the replay), forged statuses and transitions from
 another publisher are named as damage (exit code 3) or skipped and said, never trusted in
 silence; what real runs show (small swaps, a silent wait) is no damage."""
 
@@ -367,6 +369,124 @@ def test_taxel_forces_no_taxel_reads_are_damage(tmp_path):
     assert len(log.damage) == 1, log.damage
     assert f"{logged // 3} message(s) on {TACTILE_CHANNEL}" in log.damage[0], log.damage
     assert len(log.tactile["t"]) == logged - logged // 3
+
+
+# Rule: a pad acceleration past the full scale of the run's RA transducer (its scenario's, the
+# bound a trial log's pad accelerations are held to, or the myRIO's at the default
+# calibration) is an impossible value, skipped and counted; the replay exits 3.
+def test_pad_accelerations_past_the_ra_transducers_full_scale_are_damage(tmp_path, capfd):
+    def shaken(k, message):
+        if k % 3 == 2:
+            message.left_pad_acceleration = [5000.0, 0.0, 0.0]  # 2527 m/s^2 at the defaults
+        return message
+    path = _run_log(tmp_path / "run.lcmlog", tactile=shaken)
+    log = read_run_log(path)
+    logged = log.message_counts[TACTILE_CHANNEL]
+    assert len(log.damage) == 1, log.damage
+    assert f"{logged // 3} message(s) on {TACTILE_CHANNEL}" in log.damage[0], log.damage
+    assert "accelerations beyond" in log.damage[0], log.damage
+    assert len(log.tactile["t"]) == logged - logged // 3
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
+
+
+# Rule: the myRIO's clock (device_utime, unwrapped by the host) goes back only where the device
+# restarted, after which it streams on; device times going back frame after frame are frames
+# from elsewhere or corrupt bytes: damage (the messages are kept: the replay uses their own
+# times).
+def test_device_times_going_back_are_damage(tmp_path):
+    def backwards(k, message):
+        message.device_utime = 10_000_000 - 1000 * k
+        return message
+    log = read_run_log(_run_log(tmp_path / "run.lcmlog", tactile=backwards))
+    logged = log.message_counts[TACTILE_CHANNEL]
+    assert len(log.damage) == 1, log.damage
+    assert "device times" in log.damage[0] and "go back" in log.damage[0], log.damage
+    assert f"of {logged - 2} message(s)" in log.damage[0], log.damage
+    assert len(log.tactile["t"]) == logged
+
+
+def test_a_myrio_restart_is_no_damage(tmp_path):
+    def restarted(k, message):
+        if k >= 1000:  # the device's clock starts again, and runs on
+            message.device_utime = 20_000 + 1000 * (k - 1000)
+        return message
+    log = read_run_log(_run_log(tmp_path / "run.lcmlog", tactile=restarted))
+    assert log.damage == [], log.damage
+
+
+def _silent(seconds, after=(1500, 3000)):
+    """tactile(k, message) of _run_log: the messages' times moved `seconds` later after each of
+    the messages `after` (their receive times run on 1 ms apart)."""
+    def shifted(k, message):
+        message.utime += int(seconds * 1e6) * sum(k >= a for a in after)
+        message.device_utime = message.utime
+        return message
+    return shifted
+
+
+class _SteppedTime:
+    """A stand-in for Simulator that records the time [s] each AdvanceTo steps through, and
+    refuses to step further than MOST_S at once."""
+    MOST_S = 60.0
+
+    def __init__(self):
+        self.spans = []
+
+    def __call__(self, diagram):
+        from pydrake.systems.analysis import Simulator
+        simulator, spans, most = Simulator(diagram), self.spans, self.MOST_S
+
+        class Recording:
+            def __getattr__(self, name):
+                return getattr(simulator, name)
+
+            def AdvanceTo(self, t):
+                start = simulator.get_context().get_time()
+                assert t - start <= most, f"the replay steps the matcher {t - start} s"
+                spans.append(t - start)
+                return simulator.AdvanceTo(t)
+        return Recording()
+
+
+# Rule: the station publishes TEGRASP_TACTILE every 1 ms tick while the run lasts, and its
+# watchdog stops a run whose tactile data stop for its timeout; a longer silence is damage,
+# and the replay steps the matcher through the logged stretches only, never through the
+# silence: its cost follows the messages, not the time they span.
+def test_a_tactile_silence_past_the_watchdog_is_damage_and_not_stepped_through(
+        tmp_path, monkeypatch):
+    from tegrasp_drake.events import replay as event_replay
+    from tegrasp_drake.runs import hardware_log_replay
+    from tegrasp_drake.runs.hardware_log_replay import replay_run_log
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    path = _run_log(tmp_path / "run.lcmlog", tactile=_silent(600.0))
+    log = read_run_log(path)
+    assert len(log.damage) == 1, log.damage
+    assert "silent for longer than the tactile watchdog's timeout" in log.damage[0], log.damage
+    assert "in 2 place(s)" in log.damage[0], log.damage
+    stepped = _SteppedTime()
+    monkeypatch.setattr(hardware_log_replay, "Simulator", stepped)
+    monkeypatch.setattr(event_replay, "Simulator", stepped)
+    replay = replay_run_log(path, events_dir=str(tmp_path / "events"))
+    span = 4.0  # [s] of logged ticks, in three stretches
+    assert sum(stepped.spans) <= 2 * span + 0.1, stepped.spans  # the two replays' steps
+    assert len(replay.in_sequence.times) <= span / 1e-3 + 3
+
+
+# Rule: the silence allowed is the run's own tactile watchdog timeout (its TEGRASP_RUN_INFO
+# hardware config), the default when it logged none.
+@pytest.mark.parametrize("tactile_timeout, damaged", [(None, True), (2.0, False)])
+def test_the_silence_allowed_is_the_runs_tactile_watchdog_timeout(tactile_timeout, damaged,
+                                                                   tmp_path):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    config = HardwareStationConfig()
+    if tactile_timeout is not None:
+        config.watchdog.tactile_timeout = tactile_timeout
+    info = _run_info(hardware_yaml=hardware_config_to_yaml(config))
+    log = read_run_log(_run_log(tmp_path / "run.lcmlog", [info], tactile=_silent(1.0)))
+    assert bool(log.damage) == damaged, log.damage
+    assert log.tactile_timeout == config.watchdog.tactile_timeout
 
 
 # Rule: on the devices a taxel's force is its calibrated count, which may read past what the

@@ -102,7 +102,7 @@ def test_expected_event_follows_the_mode_the_logged_transitions_left():
 
 def test_replayed_matcher_matches_each_memorized_event_before_its_transition(run_log_path):
     log = read_run_log(run_log_path)
-    results = replay_matcher(log.tactile_trial(), log.transitions, EVENTS)
+    results = replay_matcher(log.tactile_segments(), log.transitions, EVENTS)
     assert [r.transition for r in results] == ["reach_load", "load_lift", "lift_hold",
                                                 "place_unload"]
     for result in results:
@@ -150,9 +150,9 @@ def test_the_replay_reads_the_runs_scenario_once(run_log_path, tmp_path, monkeyp
 
 def test_the_replayed_matcher_has_the_runs_ra_envelope(run_log_path):
     log = read_run_log(run_log_path)
-    raw = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+    raw = replay_matcher(log.tactile_segments(), log.transitions, EVENTS,
                          config=live_matcher_config(EVENTS))
-    enveloped = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+    enveloped = replay_matcher(log.tactile_segments(), log.transitions, EVENTS,
                                config=live_matcher_config(EVENTS, EventMatcherConfig(
                                    ra_envelope_hz=2.0)))
     first_raw, first_enveloped = raw[0].best_scores, enveloped[0].best_scores
@@ -164,7 +164,7 @@ def test_the_replayed_matcher_has_the_runs_ra_noise_floor(run_log_path):
     # Until the quiet period is measured no RA window can match: a 1.5 s one hides the
     # Reach-Load event (logged at 1.1 s) that the replay matches without a floor.
     log = read_run_log(run_log_path)
-    results = replay_matcher(log.tactile_trial(), log.transitions, EVENTS,
+    results = replay_matcher(log.tactile_segments(), log.transitions, EVENTS,
                              config=live_matcher_config(EVENTS, EventMatcherConfig(
                                  ra_noise_floor_sigmas=5.39, ra_noise_quiet_s=1.5)))
     assert results[0].transition == "reach_load" and results[0].match_time is None
