@@ -7,7 +7,10 @@ busy machine for reasons that are the host's, not the code's. Tests that are not
 watchdog give it LOADED_HOST_WATCHDOG_S instead (the fault tests measure the reaction after
 the timeout, whatever it is)."""
 
-LOADED_HOST_WATCHDOG_S = 0.5
+from tegrasp_drake.emulators.launcher import EMULATED_WATCHDOG_TIMEOUT_S
+
+# What `tegrasp emulate --write-config` gives each emulated device, for the same reason.
+LOADED_HOST_WATCHDOG_S = EMULATED_WATCHDOG_TIMEOUT_S
 
 
 def tolerate_a_loaded_host(config):

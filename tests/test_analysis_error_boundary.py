@@ -274,19 +274,19 @@ def test_an_input_folder_is_named_by_the_scripts_own_argument(name, arguments, w
         given.write_text("not a folder\n")
     (tmp_path / "spec.yaml").write_text("base: {}\n")
     (tmp_path / "out").write_text("a file where the outputs' folder belongs\n")
-    argv = [a.replace("IN", str(given)).replace("OUT", str(tmp_path / "out"))
-            for a in arguments]
+    # Paths relative to the script's folder, tmp_path: a message echoes a long path cut short.
+    argv = [a.replace("IN", "in").replace("OUT", "out") for a in arguments]
     done = run_script(name, argv, tmp_path)
     why = "does not exist" if kind == "missing" else "is a file, not a folder"
     assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
-    assert done.stderr == f"{name}: error: {what} '{given}' {why}; {advice}\n", done.stderr
+    assert done.stderr == f"{name}: error: {what} 'in' {why}; {advice}\n", done.stderr
     assert "argument '" not in done.stderr and "cannot write" not in done.stderr
 
 
 def test_make_table1_names_its_results_argument_not_load_records(tmp_path):
-    done = run_script("make_table1", [str(tmp_path / "nonexist")], tmp_path)
+    done = run_script("make_table1", ["nonexist"], tmp_path)
     assert done.returncode == EXIT_ERROR
-    assert done.stderr == (f"make_table1: error: results folder '{tmp_path / 'nonexist'}' does "
+    assert done.stderr == ("make_table1: error: results folder 'nonexist' does "
                            "not exist; give the --out folder of `tegrasp sweep`\n"), done.stderr
 
 
@@ -306,8 +306,7 @@ def test_an_empty_results_folder_says_it_holds_no_records(tmp_path):
 def test_a_folder_where_an_input_file_belongs_is_named(name, arguments, what, tmp_path):
     given = tmp_path / "in"
     given.mkdir()
-    done = run_script(name, [a.replace("IN", str(given)) for a in arguments], tmp_path)
+    done = run_script(name, [a.replace("IN", "in") for a in arguments], tmp_path)
     assert done.returncode == EXIT_ERROR, (done.stdout, done.stderr)
-    assert done.stderr.startswith(f"{name}: error: {what.replace('IN', str(given))}"), \
-        done.stderr
+    assert done.stderr.startswith(f"{name}: error: {what.replace('IN', 'in')}"), done.stderr
     assert "cannot write" not in done.stderr and len(done.stderr.splitlines()) == 1

@@ -22,7 +22,17 @@ from tegrasp_drake.rig.files import write_atomically
 # The first line of a hardware config that `tegrasp emulate --write-config` wrote.
 WRITTEN_BY_EMULATE = "# written by `tegrasp emulate --write-config`; the next one replaces it"
 
+# [s] The watchdog timeout the written config gives each emulated device. The emulators are
+# threads of one Python process on a general-purpose host that they share with the control
+# loop, so one stall of that process (the interpreter lock, a loaded CPU) silences them all at
+# once: on a loaded 2-core host the arm and the tactile stream fell silent together for 54 ms,
+# past the real devices' 50 ms. Ten of those real timeouts is what the emulators, which have
+# no processor of their own, are given; a real device keeps its 50-100 ms (DEFAULT_TIMEOUTS).
+EMULATED_WATCHDOG_TIMEOUT_S = 0.5
+
 DEVICES = ("jaco", "robotiq", "myrio")
+# The watchdog's name (DeviceWatchdogConfig.<device>_timeout) of each emulated device.
+_WATCHDOG_DEVICE = {"jaco": "arm", "robotiq": "gripper", "myrio": "tactile"}
 SYNC_MODES = ("none", "start", "follow")
 DEVICES_LINE_PREFIX = "devices: "
 
@@ -66,6 +76,7 @@ class Emulators:
         self._jaco = None  # (DrakeLcm, emulator Diagram, its command boundary)
         self._robotiq = None  # RobotiqEmulator
         self._boundaries = []  # MessageBoundary of every inbound path, for the counts
+        self._started = []  # the DEVICES started, in DEVICES order
 
     def start(self, devices, scenario, *, trial=None, sync: str = "none",
               follow_gripper: bool = False,
@@ -89,6 +100,7 @@ class Emulators:
             self._start_myrio(trial, sync, follow_gripper)
             logger.info(f"emulate: myrio up on {self._devices['tactile']['port']}, replaying "
                         f"{trial}")
+        self._started = [device for device in DEVICES if device in devices]
         for section, fields in self._devices.items():
             logger.debug(f"emulate: the station's {section}: "
                          + ", ".join(f"{name}={value}" for name, value in fields.items()))
@@ -104,8 +116,13 @@ class Emulators:
         return DEVICES_LINE_PREFIX + json.dumps(self.devices, sort_keys=True)
 
     def hardware_config(self) -> HardwareStationConfig:
-        """The config of a station on these devices, the arm on `lcm_url`."""
-        return hardware_config_for({**self.devices, "arm": {"lcm_url": self.lcm_url}})
+        """The config of a station on these devices, the arm on `lcm_url`, each emulated
+        device's watchdog timeout EMULATED_WATCHDOG_TIMEOUT_S."""
+        config = hardware_config_for({**self.devices, "arm": {"lcm_url": self.lcm_url}})
+        for device in self._started:
+            setattr(config.watchdog, f"{_WATCHDOG_DEVICE[device]}_timeout",
+                    EMULATED_WATCHDOG_TIMEOUT_S)
+        return config
 
     def write_hardware_config(self, path) -> None:
         """Writes `hardware_config()` atomically, under the first line WRITTEN_BY_EMULATE, making

@@ -127,14 +127,18 @@ def _refuse_unreadable(events_dir: pathlib.Path, events: list[MemorizedEvent],
     for event in events:
         problem = event_problem(event)
         if problem:
-            raise UnreadableEventsError(
-                f"{events_dir / event.relative_path()}: {problem}; nothing was saved")
+            raise _unreadable(events_dir, event, problem)
     for object_name in objects:
         refused = object_events_problem(e for e in events if e.object_name == object_name)
         if refused:
-            event, problem = refused
-            raise UnreadableEventsError(
-                f"{events_dir / event.relative_path()}: {problem}; nothing was saved")
+            raise _unreadable(events_dir, *refused)
+
+
+def _unreadable(events_dir: pathlib.Path, event: MemorizedEvent,
+                problem: str) -> UnreadableEventsError:
+    """The refusal of saving `event` into `events_dir`, naming the file it would have been."""
+    path = events_dir.joinpath(event.relative_path())
+    return UnreadableEventsError(f"{path}: {problem}; nothing was saved")
 
 
 def _save_held(events_dir: pathlib.Path, events: list[MemorizedEvent], objects: list[str],

@@ -5,7 +5,8 @@ import os
 import numpy as np
 
 from tegrasp_drake.emulators.launcher import (
-    Emulators, devices_from_line, hardware_config_for)
+    EMULATED_WATCHDOG_TIMEOUT_S, Emulators, devices_from_line, hardware_config_for)
+from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.emulators.myrio_emulator import TactileRecording, save_tactile_recording
 from tegrasp_drake.scenario.scenario import LoadScenario
 
@@ -29,6 +30,11 @@ def test_started_devices_are_reported_as_hardware_config_fields(tmp_path):
         assert config.tactile.port == devices["tactile"]["port"]
         assert config.arm.lcm_url == "memq://"
         assert devices_from_line(emulators.devices_line()) == devices
+        # The emulated devices' watchdog tolerates a stall of this shared host; the arm, not
+        # emulated here, keeps a real arm's timeout.
+        assert config.watchdog.timeouts() == {"arm": DEFAULT_TIMEOUTS["arm"],
+                                              "gripper": EMULATED_WATCHDOG_TIMEOUT_S,
+                                              "tactile": EMULATED_WATCHDOG_TIMEOUT_S}
     started, closed = lines[:2], lines[2:]
     assert [line.split(":")[0] for line in started] == ["robotiq", "myrio"]
     # On closing, what the gripper received: its requests, none of them malformed.
