@@ -202,6 +202,13 @@ def test_distinct_serial_ports_are_accepted(tmp_path):
     ("left: {gain: [1.0e-3]}", "left.gain"),
     ("right: {offset: [70000, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0]}", "right.offset[0]"),
     ("left: {piezo_offset: 50.0}", "left.piezo_offset"),
+    ("right: {piezo_gain: 1.0e+30}", "right.piezo_gain"),
+    ("left: {piezo_gain: 0.253}", "left.piezo_gain"),
+    ("left: {piezo_gain: -253.0}", "left.piezo_gain"),
+    ("zero_samples: -1", "zero_samples"),
+    ("zero_samples: 1000000000", "zero_samples"),
+    ("piezo_volts_per_count: 0.0", "piezo_volts_per_count"),
+    ("piezo_volts_per_count: 10.0", "piezo_volts_per_count"),
 ])
 def test_a_tactile_calibration_out_of_its_ranges_is_refused(tmp_path, body, field):
     from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration

@@ -27,6 +27,15 @@ PIEZO_COUNT_LIMIT = 32767
 MAX_TAXEL_GAIN_N_PER_COUNT = 0.1
 # The myRIO's piezo input: +-10 V (PIEZO_VOLTS_PER_COUNT over the signed 16-bit count).
 PIEZO_INPUT_V = PIEZO_VOLTS_PER_COUNT * (PIEZO_COUNT_LIMIT + 1)
+# The film's gain, 1 / S [(m/s^2)/V]. A free PVDF film on the fingertip reads S = 3.96e-3 V
+# per m/s^2 (docs/model.md, "The film's sensitivity S and its range"), a bonded one 3-30 times
+# less: 1 / S of 253-7,600. Below 1, S would be 250 times the free film's; above 1e5 the
+# +-10 V input would span 1e6 m/s^2. Either is a unit slip (per millivolt, per kilovolt).
+MIN_PIEZO_GAIN = 1.0
+MAX_PIEZO_GAIN = 1.0e5
+# The most count sequences zeroing may average: one arrives per ~9.2 ms (TACTILE_FRAME.md),
+# so 65,000 take 600 s, the longest ready_timeout (HardwareStationConfig).
+MAX_ZERO_SAMPLES = 65_000
 
 
 @dataclasses.dataclass
@@ -40,7 +49,11 @@ class PadCalibration:
     offset: list[float] = bounded(  # [counts] mid-range; zeroed at start
         default_factory=lambda: [30000.0] * TAXELS_PER_PAD, low=0.0, high=COUNT_MAX,
         unit="counts", length=TAXELS_PER_PAD, why="the AD7147's 16-bit conversion result")
-    piezo_gain: float = 253.0   # [(m/s^2)/V], 1 / S of the simulated film (docs/model.md)
+    # [(m/s^2)/V], 1 / S of the simulated film (docs/model.md)
+    piezo_gain: float = bounded(
+        253.0, low=MIN_PIEZO_GAIN, high=MAX_PIEZO_GAIN, unit="(m/s^2)/V",
+        why="1 / the film's sensitivity: below, a film 250 times as sensitive as a free "
+            "one; above, the +-10 V input spans 100,000 g; either is a unit slip")
     piezo_offset: float = bounded(0.0, low=-PIEZO_INPUT_V, high=PIEZO_INPUT_V, unit="V",
                                   why="the myRIO's piezo input range")
 
@@ -50,8 +63,12 @@ class TactileCalibration:
     """Both pads, and how many count sequences to average when zeroing (0: never)."""
     left: PadCalibration = dataclasses.field(default_factory=PadCalibration)
     right: PadCalibration = dataclasses.field(default_factory=PadCalibration)
-    zero_samples: int = 32
-    piezo_volts_per_count: float = PIEZO_VOLTS_PER_COUNT
+    zero_samples: int = bounded(
+        32, low=0, high=MAX_ZERO_SAMPLES, unit="sequences",
+        why="one per ~9.2 ms (TACTILE_FRAME.md): 65,000 take 600 s, the longest ready_timeout")
+    piezo_volts_per_count: float = bounded(
+        PIEZO_VOLTS_PER_COUNT, low=0.0, low_open=True, high=PIEZO_VOLTS_PER_COUNT, unit="V",
+        why="the myRIO's widest piezo input, +-10 V over the signed 16-bit count")
 
     def pads(self) -> tuple[PadCalibration, PadCalibration]:
         """(left, right), in `channels.FINGER_NAMES` order."""
