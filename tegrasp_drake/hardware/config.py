@@ -24,6 +24,7 @@ from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_LCM
                                                   JACO_STATUS_CHANNEL)
 from tegrasp_drake.hardware.myrio.tactile_frame import FRAME_PERIOD_US
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
+from tegrasp_drake.robotiq import registers
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance,
@@ -376,12 +377,37 @@ def _terminal_device(rdev: int) -> bool | None:
 WATCHDOG_MIN_PERIODS = 2
 
 
+def gripper_read_period(config: HardwareStationConfig) -> float:
+    """[s] between two of the gripper's status reads at the most: gripper.period, or the time
+    a read and a command write take on the wire at gripper.baudrate if that is longer."""
+    gripper = config.gripper
+    on_wire = (registers.transaction_seconds(registers.READ_BYTES, gripper.baudrate)
+               + registers.transaction_seconds(registers.WRITE_BYTES, gripper.baudrate))
+    return max(gripper.period, on_wire)
+
+
 def device_update_periods(config: HardwareStationConfig) -> dict[str, float]:
     """{device: the period [s] at which it updates what the watchdog reads}: the JACO2's
-    statuses (JACO_LCM_PERIOD, the driver's 100 Hz), the gripper's reads (gripper.period),
-    the myRIO's frames (TACTILE_FRAME.md, one a millisecond)."""
-    return {"arm": JACO_LCM_PERIOD, "gripper": config.gripper.period,
+    statuses (JACO_LCM_PERIOD, the driver's 100 Hz), the gripper's reads
+    (gripper_read_period), the myRIO's frames (TACTILE_FRAME.md, one a millisecond)."""
+    return {"arm": JACO_LCM_PERIOD, "gripper": gripper_read_period(config),
             "tactile": FRAME_PERIOD_US * 1e-6}
+
+
+def gripper_request_timeout_problem(config: HardwareStationConfig,
+                                    prefix: str = "") -> str | None:
+    """"field 'gripper.request_timeout' ..." when it is not longer than a command write and
+    its answer take on the wire at gripper.baudrate (every such request would time out),
+    else None."""
+    gripper = config.gripper
+    least = registers.transaction_seconds(registers.WRITE_BYTES, gripper.baudrate)
+    if gripper.request_timeout > least:
+        return None
+    return (f"field '{prefix}gripper.request_timeout' is {number_text(gripper.request_timeout)}"
+            f" s, not longer than a command write and its answer take at "
+            f"{gripper.baudrate} baud ({number_text(least)} s on the wire), so every request "
+            f"would time out: give more than {number_text(least)} s, or the 2F-85's "
+            f"'{prefix}gripper.baudrate' {registers.BAUDRATE}")
 
 
 def watchdog_least_timeouts(config: HardwareStationConfig, prefix: str = ""
@@ -396,11 +422,11 @@ def watchdog_least_timeouts(config: HardwareStationConfig, prefix: str = ""
              f"{WATCHDOG_MIN_PERIODS} of the {device}'s updates ({number_text(period)} s each)"
              f", so the watchdog would stop the run on the first late one", "")
             for device, period in device_update_periods(config).items()]
-    gripper = config.gripper
-    rows.append(("gripper", gripper.request_timeout + WATCHDOG_MIN_PERIODS * gripper.period,
+    gripper, read_period = config.gripper, gripper_read_period(config)
+    rows.append(("gripper", gripper.request_timeout + WATCHDOG_MIN_PERIODS * read_period,
                  f"one unanswered request (field '{prefix}gripper.request_timeout', "
                  f"{number_text(gripper.request_timeout)} s) and then {WATCHDOG_MIN_PERIODS} "
-                 f"of the gripper's reads ({number_text(gripper.period)} s each), so the "
+                 f"of the gripper's reads ({number_text(read_period)} s each), so the "
                  "watchdog would stop the run on the first lost answer",
                  f", or a shorter '{prefix}gripper.request_timeout'"))
     return rows
@@ -409,8 +435,9 @@ def watchdog_least_timeouts(config: HardwareStationConfig, prefix: str = ""
 def watchdog_timeouts_problem(config: HardwareStationConfig, prefix: str = "") -> str | None:
     """"field 'watchdog.<device>_timeout' ..." when a device's watchdog timeout is not longer
     than what the device's own timing lets it be silent for (watchdog_least_timeouts), else
-    None."""
-    for device, least, why, other in watchdog_least_timeouts(config, prefix):
+    None. Of a device's rows the longest is said, so that its "give more than" suffices."""
+    rows = sorted(watchdog_least_timeouts(config, prefix), key=lambda row: -row[1])
+    for device, least, why, other in rows:
         timeout = config.watchdog.timeouts()[device]
         if not timeout > least:
             return (f"field '{prefix}watchdog.{device}_timeout' is {number_text(timeout)} s, not "
@@ -434,7 +461,8 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     if problem:
         origin = lcm_url_origin(config.arm.lcm_url, f"field '{prefix}arm.lcm_url'")
         raise ConfigError(f"{source}: {origin} {problem}, got {shown(config.arm.lcm_url)}")
-    problem = watchdog_timeouts_problem(config, prefix)
+    problem = (gripper_request_timeout_problem(config, prefix)
+               or watchdog_timeouts_problem(config, prefix))
     if problem:
         raise ConfigError(f"{source}: {problem}")
     tactile, gripper = config.tactile.port, config.gripper.port

@@ -13,6 +13,24 @@ STATUS_ADDRESS = 2000
 REGISTER_COUNT = 3
 READ_FUNCTION = 4
 
+# Modbus RTU on the wire (Modbus over serial line specification and implementation guide
+# V1.02, 2.5.1): 10 bits a character at 8N1 (start, 8 data, stop), and a silence of 3.5
+# characters that ends each frame. A status read of REGISTER_COUNT registers is a request of
+# 8 bytes (address, function, start, count, CRC) and an answer of 5 + 2 per register
+# (address, function, byte count, data, CRC); a command write (function 16) a request of
+# 9 + 2 per register (..., count, byte count, data, CRC) and an answer of 8.
+BITS_PER_CHARACTER = 10
+FRAME_SILENCE_CHARACTERS = 3.5
+READ_BYTES = 8 + 5 + 2 * REGISTER_COUNT
+WRITE_BYTES = 9 + 2 * REGISTER_COUNT + 8
+
+
+def transaction_seconds(transaction_bytes: int, baudrate: float) -> float:
+    """[s] a request and its answer, `transaction_bytes` together, take on the wire at
+    `baudrate` [baud], with the silence that ends each of the two frames."""
+    characters = transaction_bytes + 2 * FRAME_SILENCE_CHARACTERS
+    return characters * BITS_PER_CHARACTER / baudrate
+
 # Action request bits (command byte 0).
 ACTION_ACT = 0x01
 ACTION_GTO = 0x08

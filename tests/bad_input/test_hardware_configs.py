@@ -252,7 +252,7 @@ def test_a_limited_joint_marked_continuous_is_refused_in_both_configs(tmp_path, 
         LoadHardwareConfig(config)
 
 
-@pytest.mark.parametrize("device, least", [("arm", "0.02"), ("gripper", "0.01"),
+@pytest.mark.parametrize("device, least", [("arm", "0.02"), ("gripper", "0.06"),
                                            ("tactile", "0.002")])
 def test_a_watchdog_timeout_within_two_device_updates_is_refused(device, least):
     config = HardwareStationConfig()
@@ -276,6 +276,31 @@ def test_a_gripper_request_timeout_the_watchdog_cannot_wait_out_is_refused(tmp_p
     assert "or a shorter 'gripper.request_timeout'" in str(refused.value)
     config.write_text("gripper: {request_timeout: 0.5}\nwatchdog: {gripper_timeout: 0.6}\n")
     assert LoadHardwareConfig(config).watchdog.gripper_timeout == 0.6
+
+
+# Rule: at a slow gripper.baudrate a request must be given the time its frames take on the
+# wire, and the watchdog the time between reads that the wire allows (1200 baud: a read and
+# a write take 0.47 s, past the 50 ms request timeout and the 100 ms watchdog).
+@pytest.mark.parametrize("body, words", [
+    ("gripper: {baudrate: 1200}\n", "field 'gripper.request_timeout' is 0.05 s, not longer "
+     "than a command write and its answer take at 1200 baud (0.25 s on the wire)"),
+    ("gripper: {baudrate: 9600}\n", "field 'watchdog.gripper_timeout' is 0.1 s, not longer "
+     "than one unanswered request (field 'gripper.request_timeout', 0.05 s) and then 2 of the "
+     "gripper's reads (0.0583333 s each), so the watchdog would stop the run on the first "
+     "lost answer: give more than 0.166667 s"),
+])
+def test_a_gripper_baudrate_too_slow_for_its_timeouts_is_refused(tmp_path, body, words):
+    config = tmp_path / "hw.yaml"
+    config.write_text(body)
+    with pytest.raises(ConfigError, match=re.escape(words)):
+        LoadHardwareConfig(config)
+
+
+def test_a_slow_gripper_baudrate_with_timeouts_to_match_is_taken(tmp_path):
+    config = tmp_path / "hw.yaml"
+    config.write_text("gripper: {baudrate: 1200, request_timeout: 0.3}\n"
+                      "watchdog: {gripper_timeout: 1.3}\n")
+    assert LoadHardwareConfig(config).gripper.baudrate == 1200
 
 
 def test_a_config_with_such_a_timeout_is_one_line(tmp_path, capfd):
