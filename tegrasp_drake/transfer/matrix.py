@@ -337,6 +337,7 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
     SweepError for a folder of other world settings."""
     from tegrasp_drake.events import save_memorized_events
     from tegrasp_drake.events.event_file import has_index, read_index
+    from tegrasp_drake.events.events_folder import UnreadableEventsError
     from tegrasp_drake.recording.campaign import RecordEventsError
     from tegrasp_drake.recording.ensemble_events import (ENSEMBLE_FOLDER, TEMPLATE_RUNS,
                                                          record_object_ensemble)
@@ -386,9 +387,11 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
             logger.info(f"recording the {what}events of {object_name} in world {world}")
             try:
                 events = record(object_name, world_scenario(spec, world, object_name))
-            except RecordEventsError as error:
+                save_memorized_events(folder / sub, events.values())
+            except (RecordEventsError, UnreadableEventsError) as error:
+                # a world whose trials give no usable events (UnreadableEventsError: what
+                # they gave would not read back as one grasp's): nothing of it was saved
                 raise SweepError(f"world {world}: {error}") from None
-            save_memorized_events(folder / sub, events.values())
             bar.update(1)
     return len(pending)
 

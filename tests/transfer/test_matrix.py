@@ -336,3 +336,22 @@ def test_a_world_override_out_of_range_names_its_entry_in_the_spec(tmp_path):
     assert "got 5000.0; correct the entry, or drop it" in text, text
     assert text.count("(") == text.count(")") and text.count("[") == text.count("]"), text
     assert "scenario_overrides" not in text and "other --set" not in text, text
+
+
+def test_a_world_whose_recording_would_not_read_back_is_refused_and_saves_nothing(
+        tmp_path, monkeypatch):
+    """A recording the events reader would refuse (here Load-Lift before Reach-Load) is a
+    SweepError naming the world, not an internal error, and leaves no event file."""
+    from tegrasp_drake.events import load_memorized_events
+    from tegrasp_drake.recording import paper_events
+    from tegrasp_drake.sweep.runner import SweepError
+    recorded = load_memorized_events(paths.package_events_dir(), "box")
+    out_of_order = dict(recorded, load_lift=dataclasses.replace(
+        recorded["load_lift"], transition_time_s=recorded["reach_load"].transition_time_s / 2))
+    monkeypatch.setattr(paper_events, "record_events", lambda *args: out_of_order)
+    spec = LoadTransferSpec(write_spec(tmp_path, TWO_WORLDS))
+    with pytest.raises(SweepError, match="^world ideal: .*load_lift.*nothing was saved"):
+        record_world_events(spec, "ideal", tmp_path / "ideal")
+    from tegrasp_drake.transfer.matrix import WORLD_FILE
+    kept = [path.name for path in (tmp_path / "ideal").rglob("*") if path.is_file()]
+    assert kept == [WORLD_FILE]  # the world's settings, no event
