@@ -473,13 +473,14 @@ def pad_acceleration_bound(scenario) -> float:
 
 
 def _plausible_tactile(messages: list, taxel_range: tuple[float, float],
-                       acceleration_bound: float) -> tuple[list, int]:
-    """The (wall time, lcmt_tegrasp_tactile) messages whose values can be real, and how many
-    were not. LCM logs carry no checksum, so a flipped byte shows only as an impossible value:
-    not finite, a taxel force outside `taxel_range` [N] (taxel_force_range), an acceleration
-    beyond `acceleration_bound` [m/s^2] (pad_acceleration_bound), not 12 taxels, a time more
-    than MAX_TIME_OUTLIER_S from its neighbours' median (1 ms ticks) or before the previous
-    message's."""
+                       acceleration_bound: float) -> tuple[list, int, int]:
+    """The (wall time, lcmt_tegrasp_tactile) messages whose values and times can be real, how
+    many values were not and how many times. LCM logs carry no checksum, so a flipped byte
+    shows only as an impossible value: not finite, a taxel force outside `taxel_range` [N]
+    (taxel_force_range), an acceleration beyond `acceleration_bound` [m/s^2]
+    (pad_acceleration_bound), not 12 taxels; or as a time (utime) before the previous
+    message's, or more than MAX_TIME_OUTLIER_S from its neighbours' median (1 ms ticks) while
+    the log's receive time [us] did not move with it (a silence moves both clocks)."""
     low, high = taxel_range
     values_ok = []
     for _, message in messages:
@@ -494,14 +495,22 @@ def _plausible_tactile(messages: list, taxel_range: tuple[float, float],
                          and float(np.max(np.abs(accelerations), initial=0.0))
                          <= acceleration_bound)
     times = np.array([message.utime * 1e-6 for _, message in messages])
-    kept, last = [], -np.inf
+    offsets = times - np.array([wall * 1e-6 for wall, _ in messages])  # [s] utime - receive
+
+    def outlier(values, k) -> bool:
+        neighbours = values[max(0, k - TIME_NEIGHBOURS):k + TIME_NEIGHBOURS + 1]
+        return abs(values[k] - np.median(neighbours)) > MAX_TIME_OUTLIER_S
+
+    kept, last, mistimed = [], -np.inf, 0
     for k, (wall, message) in enumerate(messages):
-        neighbours = times[max(0, k - TIME_NEIGHBOURS):k + TIME_NEIGHBOURS + 1]
-        if (values_ok[k] and abs(times[k] - np.median(neighbours)) <= MAX_TIME_OUTLIER_S
-                and times[k] >= last):
-            kept.append((wall, message))
-            last = times[k]
-    return kept, len(messages) - len(kept)
+        if not values_ok[k]:
+            continue
+        if times[k] < last or (outlier(times, k) and outlier(offsets, k)):
+            mistimed += 1
+            continue
+        kept.append((wall, message))
+        last = times[k]
+    return kept, values_ok.count(False), mistimed
 
 
 def device_time_damage(device_utimes) -> str | None:
@@ -746,8 +755,8 @@ def read_run_log(path) -> RunLog:
         damage.append(f"its {RUN_INFO_CHANNEL} field 'hardware_yaml' {hardware_problem} "
                       "(corrupt bytes); the tactile watchdog's default timeout is used")
     taxel_range, acceleration_bound = taxel_force_range(scenario), pad_acceleration_bound(scenario)
-    tactile_messages, implausible = _plausible_tactile(decoded[TACTILE_CHANNEL], taxel_range,
-                                                       acceleration_bound)
+    tactile_messages, implausible, mistimed = _plausible_tactile(
+        decoded[TACTILE_CHANNEL], taxel_range, acceleration_bound)
     if implausible:
         whose = "its scenario's" if scenario is not None else "any scenario's"
         damage.append(
@@ -755,7 +764,12 @@ def read_run_log(path) -> RunLog:
             f"finite, taxel forces outside {number_text(taxel_range[0])} to "
             f"{number_text(taxel_range[1])} N, what {whose} or a pad's taxels can read, "
             f"accelerations beyond {number_text(acceleration_bound)} m/s^2, the full scale of "
-            f"{whose} or the myRIO's RA transducer, or time going back: corrupt bytes); "
+            f"{whose} or the myRIO's RA transducer: corrupt bytes); skipped")
+    if mistimed:
+        damage.append(
+            f"{mistimed} message(s) on {TACTILE_CHANNEL} carry a time (utime) before the "
+            f"previous message's, or more than {number_text(MAX_TIME_OUTLIER_S)} s from their "
+            "neighbours' while the log's receive times did not move with it (corrupt bytes); "
             "skipped")
     decoded[TACTILE_CHANNEL] = tactile_messages
     tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])

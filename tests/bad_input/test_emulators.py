@@ -270,8 +270,9 @@ def test_the_emulated_myrio_says_when_a_run_stops_and_the_next_begins(tmp_path):
         run_commands(0.2)
         wait_for(said("the arm commands stopped: streaming on"), "word of the stop")
         streamed = reader.counters().decoder.frames
-        time.sleep(0.5)
-        assert reader.counters().decoder.frames > streamed + 50
+        # 50 more frames (50 ms of the 1 kHz stream), waited for: a loaded host delays them
+        wait_for(lambda: reader.counters().decoder.frames > streamed + 50,
+                 "stream after the stop")
         assert not said("a new run's arm commands")()
         run_commands(0.1)
         wait_for(said("a new run's arm commands: replaying the trial from its beginning"),

@@ -656,3 +656,35 @@ def test_a_replay_with_events_felt_on_another_object_is_refused(tmp_path, capfd)
     save_memorized_events(tmp_path / "same", EVENTS.values())
     code, text = _replay([str(path), "--events", str(tmp_path / "same")], capfd)
     assert code == 0, text
+
+
+def _sparse_log(path, utime_shift_s=lambda k: 0.0):
+    """A run's log of 12 tactile messages 0.3 s apart, each received as its time passes; the
+    utime of message k shifted by utime_shift_s(k) [s], its receive time not."""
+    trial = synthetic_grasp(GRASP)
+    log = lcm.EventLog(str(path), "w", overwrite=True)
+    log.write_event(START_US, RUN_INFO_CHANNEL, _run_info().encode())
+    for n, k in enumerate(range(0, 12 * 300, 300)):
+        t = trial.t_ra[k]
+        sa = trial.sa[min(np.searchsorted(trial.t_sa, t, side="right") - 1, len(trial.sa) - 1)]
+        message = tactile_message(t, sa, trial.ra[k])
+        message.utime += int(utime_shift_s(n) * 1e6)
+        log.write_event(START_US + 1000 + int(t * 1e6), TACTILE_CHANNEL, message.encode())
+    log.close()
+    return path
+
+
+# Rule: a silence moves the messages' times and the log's receive times together; only a
+# time that leaves its neighbours' while the receive time stays is a corrupt one, and it is
+# said as a time, not as an impossible value.
+def test_messages_between_silences_are_kept_and_only_a_corrupt_time_is_skipped(tmp_path):
+    sparse = read_run_log(_sparse_log(tmp_path / "sparse.lcmlog"))
+    assert len(sparse.tactile["t"]) == 12, sparse.damage
+    assert not [d for d in sparse.damage if "impossible" in d or "carry a time" in d]
+    assert any("silent for longer" in d for d in sparse.damage), sparse.damage
+    flipped = read_run_log(_sparse_log(tmp_path / "flipped.lcmlog",
+                                       lambda n: 100.0 if n == 5 else 0.0))
+    assert len(flipped.tactile["t"]) == 11
+    said = [d for d in flipped.damage if "carry a time" in d]
+    assert len(said) == 1 and said[0].startswith("1 message(s) on TEGRASP_TACTILE"), said
+    assert not [d for d in flipped.damage if "impossible" in d], flipped.damage
