@@ -28,7 +28,7 @@ MAX_TAXEL_GAIN_N_PER_COUNT = 0.1
 # The myRIO's piezo input: +-10 V (PIEZO_VOLTS_PER_COUNT over the signed 16-bit count).
 PIEZO_INPUT_V = PIEZO_VOLTS_PER_COUNT * (PIEZO_COUNT_LIMIT + 1)
 # The film's gain, 1 / S [(m/s^2)/V]. A free PVDF film on the fingertip reads S = 3.96e-3 V
-# per m/s^2 (docs/model.md, "The film's sensitivity S and its range"), a bonded one 3-30 times
+# per m/s^2 (docs/model.md, the RA model's film sensitivity), a bonded one 3-30 times
 # less: 1 / S of 253-7,600. Below 1, S would be 250 times the free film's; above 1e5 the
 # +-10 V input would span 1e6 m/s^2. Either is a unit slip (per millivolt, per kilovolt).
 MIN_PIEZO_GAIN = 1.0
