@@ -65,16 +65,27 @@ def _uniforms(trial, count):
     return [int.from_bytes(digest[4 * k:4 * k + 4], "big") / 2.0 ** 32 for k in range(count)]
 
 
+def event_trigger(controller: str) -> str:
+    """The trigger of `controller`'s event transitions: its detector's (ControllerEntry.
+    triggers), the timer for the open-loop script, which has none."""
+    from tegrasp_drake.control.controller_registry import controller_entry
+    fired = controller_entry(controller).triggers()
+    return next((trigger.value for trigger in fired if trigger.is_event), "timer")
+
+
 def fake_trial(trial):
     u_hold, u_unload, u_latency, u_false = _uniforms(trial, 4)
     placement = 0 if trial["well_placed"] else 1
     hold = u_hold < _HOLD_PROBABILITY[trial["controller"]][placement]
     unload = hold and u_unload < _UNLOAD_PROBABILITY[trial["controller"]][placement]
-    latency = None if trial["controller"] == "open_loop" else round(0.01 + 0.05 * u_latency, 6)
+    trigger = event_trigger(trial["controller"])
+    closed_loop = trigger != "timer"  # the open-loop script neither detects nor corrects
+    latency = round(0.01 + 0.05 * u_latency, 6) if closed_loop else None
     re_reach = [{"t": 0.4, "from": "Reach", "to": "Re-Reach", "trigger": "corrective",
                  "reason": "only the left finger touched"},
                 {"t": 0.7, "from": "Re-Reach", "to": "Reach", "trigger": "corrective",
                  "reason": "re-centred"}] if not trial["well_placed"] and hold else []
+    re_reach = re_reach if closed_loop else []
     return whole_result(trial, **{
         "hold_success": hold,
         "unload_success": unload,
@@ -83,7 +94,7 @@ def fake_trial(trial):
         "released": unload,
         # A misplaced trial that held re-centred first (one Re-Reach, its corrective action).
         "transitions": (re_reach + [{"t": 1.0, "from": "Reach", "to": "Load",
-                                     "trigger": "memorized_event", "reason": "Reach-Load event"}]
+                                     "trigger": trigger, "reason": "Reach-Load event"}]
                         + ([{"t": 2.0, "from": "Load", "to": "Done", "trigger": "timer",
                              "reason": "the test's timeline"}] if unload else [])),
         "corrective_actions": ["re_reach"] if re_reach else [],
@@ -157,7 +168,8 @@ def fake_trial_with_events(trial, *, events_dir):
     result = fake_trial(trial)
     load = next(k for k, entry in enumerate(result["transitions"]) if entry["to"] == "Load")
     result["transitions"][load] = {"t": 1.0, "from": "Reach", "to": "Load",
-                                "trigger": "memorized_event", "reason": "Reach-Load event"}
+                                "trigger": event_trigger(trial["controller"]),
+                                "reason": "Reach-Load event"}
     result["physical_events"] = {"reach_load": 0.97}
     if result["detection_latency_s"]:  # the detection's at 1 s, 30 ms behind its event
         result["detection_latency_s"] = {"reach_load": 1.0 - 0.97}

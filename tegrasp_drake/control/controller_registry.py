@@ -59,6 +59,23 @@ class ControllerEntry:
         """It reads memorized events (its config's events_folder is not None)."""
         return self.config.events_folder is not None
 
+    @property
+    def reads_memorized_events(self) -> bool:
+        """It can match memorized events: its own (event_triggered) or, as every state
+        machine can, the corrective ones its config's memorized_corrective names."""
+        return self.event_triggered or self.closed_loop
+
+    def triggers(self) -> frozenset:
+        """The Triggers its transitions can carry: the open-loop script's timer alone; a
+        state machine's every trigger but an event detector's (grasp_modes.Trigger.is_event:
+        its rules, faults and corrective events, which every state machine's config can
+        name), and the one its own detector fires (the builder's grasp_modes.detects)."""
+        from tegrasp_drake.control.grasp_modes import Trigger
+        if not self.closed_loop:
+            return frozenset({Trigger.TIMER})
+        return (frozenset(t for t in Trigger if not t.is_event)
+                | {self.load("detector").trigger})
+
     def rule_table(self):
         """Its state machine's RuleTable; None without one."""
         rules = self.load("rules")

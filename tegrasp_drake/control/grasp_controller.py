@@ -7,6 +7,8 @@ import dataclasses
 import math
 from typing import Annotated
 
+import numpy as np
+
 from pydrake.systems.primitives import Multiplexer
 from pydrake.systems.framework import DiagramBuilder
 from pydrake.systems.framework import OutputPort, System
@@ -17,7 +19,7 @@ from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.control.cartesian_arm_controller import AddCartesianArmController
 from tegrasp_drake.control.controller_config import EventTriggeredConfig
 from tegrasp_drake.control.noise_thresholds import resolve_noise_thresholds
-from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
+from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger, detects
 from tegrasp_drake.control.grasp_state_machine import GraspPlan, GraspStateMachine
 from tegrasp_drake.control.grasp_wrench_estimator import GraspWrenchEstimator
 from tegrasp_drake.control.heuristic_event_detector import HeuristicEventDetector
@@ -43,6 +45,13 @@ _MODE_OF_PHASE = {"settle": Mode.REACH, "reach": Mode.REACH, "load": Mode.LOAD,
                   "unload": Mode.UNLOAD, "retract": Mode.UNLOAD, "done": Mode.DONE}
 
 
+def modes_of_phases(phases) -> np.ndarray:
+    """The Mode values (float, as logged) of the open-loop script's phase indices `phases`
+    (into PHASES)."""
+    values = np.array([_MODE_OF_PHASE[phase] for phase in PHASES], dtype=float)
+    return values[np.asarray(phases, dtype=int)]
+
+
 @public_dataclass
 @dataclasses.dataclass
 class GraspController:
@@ -58,8 +67,12 @@ class GraspController:
 
     def current_mode(self, root_context) -> Mode:
         """The mode now (open loop: the mode of the script's phase)."""
-        value = int(self.mode.Eval(self._system_context(root_context))[0])
-        return Mode(value) if self.segments is None else _MODE_OF_PHASE[PHASES[value]]
+        value = self.mode.Eval(self._system_context(root_context))
+        return Mode(int(self.logged_modes(value)[0]))
+
+    def logged_modes(self, values) -> np.ndarray:
+        """The Mode values of samples of the `mode` port (open loop: of its phase indices)."""
+        return np.asarray(values) if self.segments is None else modes_of_phases(values)
 
     def _system_context(self, root_context):
         return self.state_machine.GetMyContextFromRoot(root_context)
@@ -104,8 +117,9 @@ def event_matcher_config(config: EventTriggeredConfig, *, gripper_model: str,
         sa_rate_hz=rates_hz[0], ra_rate_hz=rates_hz[1], block_s=config.sensor_block_s)
 
 
+@detects(Trigger.MEMORIZED_EVENT)
 def add_event_matcher_detector(builder, *, config, plan, rates_hz, events, channels):
-    """An event-triggered controller's detector: the EventMatcher on `channels`, trigger."""
+    """An event-triggered controller's detector: the EventMatcher on `channels`."""
     from tegrasp_drake.events import add_event_matcher
     if events is None:
         raise ValueError(f"AddGraspController: the {config.name} controller needs its "
@@ -113,16 +127,16 @@ def add_event_matcher_detector(builder, *, config, plan, rates_hz, events, chann
     matcher_config = dataclasses.replace(
         event_matcher_config(config, gripper_model=plan.gripper_model, rates_hz=rates_hz),
         read_period_s=config.update_period_s)
-    return (add_event_matcher(builder, events, matcher_config, channels=channels),
-            Trigger.MEMORIZED_EVENT)
+    return add_event_matcher(builder, events, matcher_config, channels=channels)
 
 
+@detects(Trigger.HEURISTIC_EVENT)
 def add_heuristic_detector(builder, *, config, plan, rates_hz, events, channels):
-    """The heuristic thresholds' detector on `channels`, and its trigger."""
+    """The heuristic thresholds' detector on `channels`."""
     detector = builder.AddNamedSystem("heuristic_detector", HeuristicEventDetector(
         config.heuristic, grip_force_n=plan.grip_force))
     builder.Connect(channels, detector.GetInputPort("channels"))
-    return detector, Trigger.HEURISTIC_EVENT
+    return detector
 
 
 def _add_corrective_matcher(builder, config, rates_hz, corrective_events, channels):
@@ -261,9 +275,9 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
                                       sa_rate_hz=sample_rates_hz[0])
     channels = AddMechanoreceptorChannels(builder, station)
     X_WG_desired, arm_desired_state = _add_arm_controller(builder, station=station, arm=arm)
-    detector, event_trigger = entry.load("detector")(
-        builder, config=config, plan=plan, rates_hz=sample_rates_hz, events=events,
-        channels=channels.GetOutputPort("channels"))
+    add_detector = entry.load("detector")
+    detector = add_detector(builder, config=config, plan=plan, rates_hz=sample_rates_hz,
+                            events=events, channels=channels.GetOutputPort("channels"))
     corrective = None
     if config.memorized_corrective.events:
         corrective = _add_corrective_matcher(builder, config, sample_rates_hz,
@@ -273,7 +287,7 @@ def AddStateMachineController(builder: DiagramBuilder, *, entry: ControllerEntry
     machine = builder.AddNamedSystem("grasp_state_machine", GraspStateMachine(
         plan=plan, config=config,
         event_indices={t: detector.event_index(t) for t in detector.transitions},
-        event_trigger=event_trigger,
+        event_trigger=add_detector.trigger,
         corrective_event_indices=({t: corrective.event_index(t)
                                    for t in corrective.transitions} if corrective else None),
         rules=entry.rule_table(),

@@ -63,6 +63,16 @@ class Trigger(enum.StrEnum):
         return self in (Trigger.MEMORIZED_EVENT, Trigger.HEURISTIC_EVENT)
 
 
+def detects(trigger: Trigger):
+    """Marks an event detector's builder with the trigger its detections fire (the builder's
+    `trigger`): what a controller with that detector can put on a transition
+    (controller_registry.ControllerEntry.triggers) and the state machine's event trigger."""
+    def mark(builder):
+        builder.trigger = trigger
+        return builder
+    return mark
+
+
 class Stage(enum.StrEnum):
     """The step within a mode (grasp_state_machine.py)."""
     NONE = ""  # the mode's motion, or none

@@ -442,10 +442,17 @@ class FrozenFieldError(dataclasses.FrozenInstanceError):
     the dataclass's own, so code that catches that still does)."""
 
 
+@functools.cache
+def _field_names(cls) -> frozenset:
+    """The names of the fields of dataclass `cls` (dataclasses.fields: not its ClassVars)."""
+    return frozenset(field.name for field in dataclasses.fields(cls))
+
+
 def _set_field_only(self, name: str, value) -> None:
-    """Assigns a field; an attribute that is not one (a misspelt or moved setting, which would
-    otherwise be kept and ignored) is an AttributeError naming its class and what to write."""
-    if name not in type(self).__dataclass_fields__ and not name.startswith("_"):
+    """Assigns a field; an attribute that is not one (a misspelt or moved setting, or a
+    ClassVar, which would otherwise be kept and ignored) is an AttributeError naming its class
+    and what to write."""
+    if name not in _field_names(type(self)) and not name.startswith("_"):
         raise AttributeError(_no_such_field(type(self), name))
     object.__setattr__(self, name, python_numbers(value))
 
@@ -454,7 +461,7 @@ def _refuse_change(self, name: str, value=None) -> None:
     """A frozen public dataclass's __setattr__ and __delattr__: FrozenFieldError, for a field
     saying how to make a changed copy, else naming the class's fields as _set_field_only does."""
     cls = type(self)
-    if name not in cls.__dataclass_fields__:
+    if name not in _field_names(cls):
         raise FrozenFieldError(_no_such_field(cls, name))
     # What to call the instance in the advice: its class name's last word (TrialResult: result).
     instance = re.findall(r"[A-Z]?[a-z0-9]+|[A-Z]+(?![a-z])", cls.__name__)[-1].lower()
@@ -465,7 +472,11 @@ def _refuse_change(self, name: str, value=None) -> None:
 def _no_such_field(cls, name: str) -> str:
     """'<cls> has no field '<name>': <advice>', the advice the field it moved to, else the
     closest field name, else the list of fields; for a removed field, what replaced it."""
-    fields = cls.__dataclass_fields__
+    fields = sorted(_field_names(cls), key=list(cls.__dataclass_fields__).index)
+    if name in cls.__dataclass_fields__:  # a ClassVar: the class's, the same for every instance
+        return (f"{cls.__name__}.{name} belongs to the class ({shown(getattr(cls, name))}), "
+                "not to an instance: it cannot be set; choose the class that has the value "
+                "you want")
     removed = getattr(cls, "__removed_fields__", {}).get(name)
     if removed:  # the words of the scenario's refusal (scenario/moved_keys.py)
         return f"{cls.__name__}: field '{name}' was removed: {removed}; leave it out"

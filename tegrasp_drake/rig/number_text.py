@@ -97,3 +97,10 @@ def number_option(text: str) -> TypedNumber:
         from tegrasp_drake.rig.echo import shown
         raise argparse.ArgumentTypeError(f"{shown(text)} {e}") from None
 
+
+
+def distinct_number_texts(first, second) -> tuple[str, str]:
+    """Two different numbers as text (number_text), each to its last digit (repr) when their
+    six significant digits read the same, so a message never says "1.23457 != 1.23457"."""
+    texts = number_text(first), number_text(second)
+    return texts if texts[0] != texts[1] else (repr(float(first)), repr(float(second)))

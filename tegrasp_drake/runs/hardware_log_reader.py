@@ -35,6 +35,7 @@ from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, parse_yaml
 from tegrasp_drake.scenario.scenario import scenario_from_yaml
 from tegrasp_drake.scenario.trial_log_file import sensor_bounds, widest_configs
+from tegrasp_drake.scenario.trial_result import transition_trigger_problem
 from tegrasp_drake.simulation.tactile_pads import taxel_reading_range
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_gripper,
                                     lcmt_tegrasp_run_info, lcmt_tegrasp_tactile,
@@ -664,8 +665,9 @@ def logged_scenario(info: lcmt_tegrasp_run_info | None):
 def run_info_damage(messages: list, scenario) -> list[str]:
     """What is wrong with a log's TEGRASP_RUN_INFO messages (in log order), in words: the
     first one's object_name not its own scenario's object (`scenario`, logged_scenario of
-    the first; run_info_message writes object_name from it), and later ones that differ from the first (a run publishes one: two
-    logs joined, or corrupt bytes). The replay uses the first, and its scenario's object."""
+    the first; run_info_message writes object_name from it), and later ones that differ
+    from the first (a run publishes one: two logs joined, or corrupt bytes). The replay
+    uses the first, and its scenario's object."""
     first, damage = messages[0], []
     if scenario is not None and scenario.object.name != first.object_name:
         damage.append(
@@ -683,6 +685,22 @@ def run_info_damage(messages: list, scenario) -> list[str]:
             f"first in {', '.join(names)} (a run publishes one: two logs joined, or corrupt "
             "bytes); the first is used")
     return damage
+
+
+def unfired_trigger_damage(transitions: list, run_info) -> list[str]:
+    """The damage of a run's timeline (RunLog.transitions, each one a controller makes:
+    _plausible_transitions) holding a trigger its controller, the one its TEGRASP_RUN_INFO
+    names, never fires (transition_trigger_problem), in words; [] without run info. Kept in
+    the timeline: dropping it would break the chain of modes."""
+    if run_info is None:
+        return []
+    problem = transition_trigger_problem(map(Transition.from_dict, transitions),
+                                         run_info.controller)
+    if not problem:
+        return []
+    return [f"its {TRANSITION_CHANNEL} timeline's {problem}, the controller its "
+            f"{RUN_INFO_CHANNEL} names (another publisher on the bus, or corrupt bytes); "
+            "kept in the timeline"]
 
 
 def read_run_log(path) -> RunLog:
@@ -792,11 +810,12 @@ def read_run_log(path) -> RunLog:
     damage += [f"{n} message(s) on {TRANSITION_CHANNEL} {problem} (the first: {detail}; "
                "another publisher on the bus, or corrupt bytes); skipped"
                for problem, (n, detail) in sorted(wrong.items()) + list(unchained.items())]
+    transitions = [{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
+                    "trigger": m.trigger, "reason": m.reason}
+                   for _, m in decoded[TRANSITION_CHANNEL]]
+    damage += unfired_trigger_damage(transitions, run_info)
     return RunLog(
-        path=path, run_info=run_info, tactile=tactile,
-        transitions=[{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
-                      "trigger": m.trigger, "reason": m.reason}
-                     for _, m in decoded[TRANSITION_CHANNEL]],
+        path=path, run_info=run_info, tactile=tactile, transitions=transitions,
         faults=[m for _, m in decoded[FAULT_CHANNEL]],
         gripper=[m for _, m in decoded[GRIPPER_CHANNEL]],
         arm_commands=decoded[JACO_COMMAND_CHANNEL], arm_status=decoded[JACO_STATUS_CHANNEL],

@@ -80,8 +80,11 @@ def run_ideal_grasp(scenario: Scenario, *, meshcat: Meshcat | None = None,
         meshcat.PublishRecording()
     # The phases this run reached: a shorter `duration` ends before the plan's later ones, and
     # a trial log's times lie within the log (trial_log_file.meta_problem).
-    meta = {"controller": CONTROLLER_NAME, "phases": list(PHASES),
-            "phase_starts": {s.phase: s.t_start for s in segments if s.t_start <= end_time},
+    # The script's end starts its last phase, "done", which no segment is.
+    starts = {s.phase: s.t_start for s in segments if s.t_start <= end_time}
+    if plan_duration(segments) <= end_time:
+        starts[PHASES[-1]] = plan_duration(segments)
+    meta = {"controller": CONTROLLER_NAME, "phases": list(PHASES), "phase_starts": starts,
             "grip_force": scenario.grasp.grip_force, "wall_time_s": wall,
             "sim_time_s": end_time}
     return collect_trial_log(grasp.loggers, context, scenario=scenario, meta=meta), wall

@@ -14,6 +14,7 @@ from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
 from tegrasp_drake.events.transitions import event_transition
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator, simulated_duration_range)
+from tegrasp_drake.scenario.physical_event_search import physical_event_search_starts
 from tegrasp_drake.scenario.trial_result import (FALSE_TRIGGER_MARGIN_S, HIT_EVENT,
                                                   HOLD_REQUIRED_S, UPRIGHT_TILT_DEG,
                                                   TrialResult)
@@ -47,23 +48,18 @@ def _event_transition(transition: Transition) -> str | None:
 
 def physical_event_times(log, transitions: list[Transition], grip_force: float,
                          object_config=None, hit_time_s: float = -1.0) -> dict:
-    """The physical event behind each event transition taken, looked for after its mode was
-    entered: first contact, the grip settled (after the last Reach), table touch, and "hit"
-    when the scenario's hit came within the simulated time."""
+    """The physical event behind each event transition taken, looked for from its search
+    start (physical_event_search_starts: first contact and the grip settled after the last
+    Reach, table touch after the last Place), and "hit" when the scenario's hit came within
+    the simulated time."""
     events = {}
     if 0.0 <= hit_time_s <= float(log.t_slow[-1]):
         events[HIT_EVENT] = float(hit_time_s)
-    entered = {Mode.REACH: 0.0}
-    for entry in transitions:
-        name = _event_transition(entry)
-        since = entered.get(entry.from_mode, 0.0)
-        if name == "reach_load":
-            events[name] = first_contact_time(log, after=since)
-        elif name == "load_lift":
-            events[name] = grip_force_time(log, grip_force, after=entered[Mode.REACH])
-        elif name == "place_unload":
-            events[name] = table_touch_time(log, object_config, after=since)
-        entered[entry.to_mode] = entry.t
+    search = {"reach_load": lambda since: first_contact_time(log, after=since),
+              "load_lift": lambda since: grip_force_time(log, grip_force, after=since),
+              "place_unload": lambda since: table_touch_time(log, object_config, after=since)}
+    for name, since in physical_event_search_starts(transitions).items():
+        events[name] = search[name](since)
     return events
 
 
@@ -200,6 +196,7 @@ def run_trial(scenario: Scenario, *, meshcat: Meshcat | None = None, events: dic
             "mode_names": [m.label for m in Mode], "grip_force": scenario.grasp.grip_force,
             "wall_time_s": wall, "sim_time_s": sim_time}
     log = collect_trial_log(loggers, context, scenario=scenario, meta=meta)
+    log.phase = controller.logged_modes(log.phase)  # the Modes meta 'mode_names' names
     judged = judge_trial(log, transitions, scenario)
     judged["final_mode"] = Mode.from_label(judged["final_mode"])
     result = TrialResult(

@@ -11,7 +11,8 @@ moved_keys.py: settings' old paths, refused in input and migrated in stored reco
 rule_reach.py: which taxel_aware rules one pad alone can fire for an object (the docs' table).
 trial_log_writer.py, trial_log_file.py: the trial's loggers and its TrialLog .npz file.
 logged_channels.py: a log's channels checked against the taxels and accelerations (Eq. 1-2).
-trial_result.py: TrialResult, a trial's outcome and its JSON form (read back with the log)."""
+trial_result.py: TrialResult, a trial's outcome and its JSON form (read back with the log).
+physical_event_search.py: where each event transition's physical event is searched from."""
 
 from tegrasp_drake.scenario.grasp_diagram import (AddScenarioController, GraspDiagram,
                                                   MakeGraspDiagram, MakeSimulatedStation,

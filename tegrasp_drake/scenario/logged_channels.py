@@ -8,7 +8,7 @@ or replayed as if it were one trial."""
 import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
-from tegrasp_drake.rig.number_text import number_text
+from tegrasp_drake.rig.number_text import distinct_number_texts, number_text
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 
 # Relative to the larger of a channel's value and what it is computed from (the taxels' or
@@ -52,11 +52,12 @@ def logged_channels_problem(arrays: dict) -> str | None:
                              np.add.reduce(np.abs(pad_taxels), axis=1))
             if off is not None:
                 k, row = int(inside[off]), int(rows[inside[off]])
+                logged, summed = distinct_number_texts(float(channels[k, column]),
+                                                       float(pad_taxels[off].sum()))
                 return (f"'channels' sample {k} (t = {number_text(float(t_ra[k]))} s) column "
-                        f"{column} ({CHANNEL_NAMES[column]}) holds "
-                        f"{number_text(float(channels[k, column]))}, but the pad's 12 taxels "
-                        f"at sample {row} sum to {number_text(float(pad_taxels[off].sum()))} "
-                        "(Eq. 1); the taxels or the channels were changed after the trial")
+                        f"{column} ({CHANNEL_NAMES[column]}) holds {logged}, but the pad's 12 "
+                        f"taxels at sample {row} sum to {summed} (Eq. 1); the taxels or the "
+                        "channels were changed after the trial")
     if all(name in arrays for name in ("pad_acceleration", "channels")):
         channels = np.asarray(arrays["channels"], dtype=float)
         axes = np.asarray(arrays["pad_acceleration"], dtype=float)
@@ -65,9 +66,10 @@ def logged_channels_problem(arrays: dict) -> str | None:
             size = np.sqrt(np.einsum("ij,ij->i", pad_axes, pad_axes))
             off = _first_off(channels[:, column], size, np.abs(pad_axes).sum(axis=1))
             if off is not None:
+                logged, computed = distinct_number_texts(float(channels[off, column]),
+                                                         float(size[off]))
                 return (f"'channels' sample {off} column {column} ({CHANNEL_NAMES[column]}) "
-                        f"holds {number_text(float(channels[off, column]))}, but the pad's "
-                        f"acceleration there has size {number_text(float(size[off]))} m/s^2 "
-                        "(Eq. 2); the accelerations or the channels were changed after the "
-                        "trial")
+                        f"holds {logged}, but the pad's acceleration there has size "
+                        f"{computed} m/s^2 (Eq. 2); the accelerations or the channels were "
+                        "changed after the trial")
     return None

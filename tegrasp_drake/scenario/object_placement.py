@@ -6,6 +6,7 @@ import math
 
 from tegrasp_drake.modelgen.table_sdf import CENTER_XY as TABLE_CENTER_XY
 from tegrasp_drake.modelgen.table_sdf import SIZE as TABLE_SIZE
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.ranges import bounded
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
@@ -45,6 +46,23 @@ class ObjectPlacementConfig:
                 + "), off the table top (x "
                 f"{cx - half_x:g} to {cx + half_x:g} m, y {cy - half_y:g} to {cy + half_y:g} m); "
                 "place it on the table", list(self.offset))
+
+
+# How far a result's offset may lie from where its trial put the object [m]: a sweep's trial
+# function sets it to its marker + jitter (scenario_from_trial_spec) and JSON carries a float
+# exactly, so only a sum taken in another order differs, by ~1e-17 m; a nanometre is far below
+# anything the simulation resolves and far above that rounding.
+OFFSET_TOLERANCE_M = 1e-9
+
+
+def result_offset_problem(offset, expected) -> str | None:
+    """Why `offset` [m, x y] (a result's offset_m, a logged placement.offset) is not the
+    offset `expected` [m, x y] its trial put the object at, within OFFSET_TOLERANCE_M, in
+    words ("OFFSET m is not EXPECTED m"), or None."""
+    if len(offset) == 2 and all(abs(a - b) <= OFFSET_TOLERANCE_M
+                                for a, b in zip(offset, expected)):
+        return None
+    return f"{shorten(repr(offset))} m is not [{expected[0]!r}, {expected[1]!r}] m"
 
 
 def footprint_radius(shape: str, size) -> float:

@@ -4,7 +4,8 @@ Arrays (times in s, simulation clock):
   t_sa (N,), taxels (N, 24) [N] measured (left 12 then right 12), true_taxels (N, 24) [N]
   t_ra (M,), channels (M, 4) [SA_L, SA_R N; RA_L, RA_R m/s^2], pad_acceleration (M, 6)
   t_slow (K,), arm_q (K, 6) [rad], arm_q_desired (K, 6), gripper_command (K, 3),
-  gripper_status (K, 8), phase (K,) [index into `phases`], object_state (K, 13)
+  gripper_status (K, 8), phase (K,) [the Mode value, an index into `mode_names`; an ideal
+  grasp's: an index into `phases`], object_state (K, 13)
 Metadata (JSON in `meta`): format version, scenario YAML, phase names, phase start times,
 physical event times, controller name, package versions."""
 
@@ -25,7 +26,7 @@ from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, file_pro
 from tegrasp_drake.scenario.logged_channels import logged_channels_problem
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
 from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
-from tegrasp_drake.rig.number_text import number_text
+from tegrasp_drake.rig.number_text import distinct_number_texts, number_text
 from tegrasp_drake.rig.ranges import is_integer
 from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NPZ_START, NpzHeaderError,
@@ -230,7 +231,8 @@ def _is_versions(value) -> bool:
 
 # The metadata fields a reader uses or the writer stores (optional but REQUIRED_META_FIELDS),
 # what each must hold, and its check. The writer is trial_log_writer.collect_trial_log with
-# the runs' `meta` (runs/trial.py). The times among them are checked against the log's span in meta_problem.
+# the runs' `meta` (runs/trial.py). The times among them are checked against the log's span
+# in meta_problem.
 META_FIELDS = {
     "scenario": ("be the scenario's YAML text", lambda v: isinstance(v, str)),
     "controller": ("be a controller name, one of " + ", ".join(CONTROLLER_NAMES),
@@ -451,6 +453,33 @@ def _seed_problem(meta: dict, scenario) -> str | None:
             f"random_seed {shorten(repr(scenario.random_seed))}")
 
 
+def _copied_fields_problem(meta: dict, scenario) -> str | None:
+    """What is wrong if a metadata field copied from elsewhere differs from its source, or
+    None: 'grip_force' [N] is its scenario's grasp.grip_force, 'events' its result's
+    physical_events (runs/trial.py copies both; a copy differs from its source in no digit)."""
+    grip = meta.get("grip_force")
+    if scenario is not None and grip is not None and grip != scenario.grasp.grip_force:
+        ours, theirs = distinct_number_texts(grip, scenario.grasp.grip_force)
+        return (f"meta 'grip_force' is {ours} N, but its 'scenario' grips with {theirs} N "
+                "(grasp.grip_force, the value it copies)")
+    physical = (meta.get("result") or {}).get("physical_events")
+    events = meta.get("events")
+    if events is not None and physical is not None and events != physical:
+        name = next((key for key in (*events, *physical)
+                     if events.get(key, "absent") != physical.get(key, "absent")))
+        ours, theirs = (_event_text(events, name), _event_text(physical, name))
+        return (f"meta 'events' gives '{shorten(name)}' {ours}, but its 'result' "
+                f"physical_events {theirs} (the times it copies)")
+    return None
+
+
+def _event_text(events: dict, name: str) -> str:
+    """An event's time in `events` as a message gives it: to its last digit [s], or why not."""
+    if name not in events:
+        return "absent"
+    return "null" if events[name] is None else f"{shorten(repr(events[name]))} s"
+
+
 def _result_problem(meta: dict, transitions: list, scenario) -> str | None:
     """What is wrong with meta 'result' against the rest of the log, or None: a TrialResult's
     JSON form (its own relations: TrialResult), of the log's controller, of its scenario's
@@ -549,6 +578,7 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
         if key in meta and not is_valid(meta[key]):
             return f"meta '{key}' must {what}, got {shorten(repr(meta[key]))}"
     problem = (_result_problem(meta, transitions, scenario) or _seed_problem(meta, scenario)
+               or _copied_fields_problem(meta, scenario)
                or transition_scores_problem(list(map(Transition.from_dict, transitions)),
                                             meta.get("controller")))
     if problem:
@@ -566,7 +596,60 @@ def meta_problem(meta: dict, arrays: dict, scenario=None) -> str | None:
     if phase.size and (not np.all(np.isfinite(phase)) or np.any(phase != np.round(phase))
                        or phase.min() < 0 or phase.max() >= count):
         return f"'phase' must hold indices 0 to {count - 1} of the {count} phase names"
-    return None
+    return phase_samples_problem(meta, arrays)
+
+
+def _logged_timeline(meta: dict):
+    """(change times [s], the value 'phase' holds from each on, the one before the first,
+    the values' names) of the log's timeline: its transitions' Modes (a controller trial's),
+    else its phases' starts in the order 'phases' lists them (an ideal grasp's); None when
+    it records neither."""
+    from tegrasp_drake.control.grasp_modes import Mode
+    if "transitions" in meta:
+        entries = meta["transitions"]
+        first = Mode.from_label(entries[0]["from"]) if entries else Mode.REACH
+        return ([entry["t"] for entry in entries],
+                [int(Mode.from_label(entry["to"])) for entry in entries], int(first),
+                [mode.label for mode in Mode])
+    phases, starts = meta.get("phases"), meta.get("phase_starts")
+    if not phases or not starts:
+        return None
+    started = sorted((starts[name], k) for k, name in enumerate(phases) if name in starts)
+    if not started:
+        return None
+    return [t for t, _ in started], [k for _, k in started], started[0][1], list(phases)
+
+
+def phase_samples_problem(meta: dict, arrays: dict) -> str | None:
+    """The first 'phase' sample (indices checked by meta_problem) other than the value of the
+    last change of the log's timeline (_logged_timeline) at or before its time, named with
+    its sample and time, else None. A sample within _SAME_TIME_S of a change may hold the
+    value before it or after it: the logger and the controller's update share that instant."""
+    timeline = _logged_timeline(meta)
+    if timeline is None:
+        return None
+    times, values, first, names = timeline
+    t = np.asarray(arrays["t_slow"], dtype=float)
+    phase = np.asarray(arrays["phase"], dtype=float)
+    held = np.array([first, *values], dtype=float)
+    changes = np.asarray(times, dtype=float)
+    after = np.searchsorted(changes, t + _SAME_TIME_S, side="right")
+    last = np.append(changes, -np.inf)[after - 1]  # the last change by then (none: -inf)
+    near = last >= t - _SAME_TIME_S
+    before = held[np.maximum(after - 1, 0)]
+    wrong = np.flatnonzero((phase != held[after]) & ~(near & (phase == before)))
+    if not wrong.size:
+        return None
+    k = wrong[0]
+    which = ("its 'transitions'" if "transitions" in meta
+             else "its 'phase_starts' of 'phases'")
+
+    def named(value):
+        label = names[int(value)] if int(value) < len(names) else "no such name"
+        return f"{number_text(value)} ({shorten(label)})"
+    return (f"'phase' sample {k} (t = {number_text(float(t[k]))} s) holds "
+            f"{named(float(phase[k]))}, but {which} give {named(float(held[after[k]]))} then; "
+            "a log's phases are those its timeline enters")
 
 
 # The arrays sampled at each time base, and their columns (None: a vector).
@@ -579,8 +662,9 @@ _TIME_BASES = {"t_sa": {"taxels": 24, "true_taxels": 24},
 # How far a time base's steps may differ from their median, relative to it. The loggers sample
 # at a fixed period (LogVectorOutput's publish period: trial_log_writer), so the steps differ
 # only by float64 rounding of the sample times: at most eps * t_end / period, 2e-11 for the
-# 1 ms RA period over the longest run (275 s, grasp_diagram.longest_trial_s); measured in eleven real logs
-# (12 to 18.5 s, four controllers): at most 2.2e-12. 1e-6 is five orders above that and far below any missing or displaced sample (a step off by its whole size).
+# 1 ms RA period over the longest run (275 s, grasp_diagram.longest_trial_s); measured in
+# eleven real logs (12 to 18.5 s, four controllers): at most 2.2e-12. 1e-6 is five orders
+# above that and far below any missing or displaced sample (a step off by its whole size).
 STEP_TOLERANCE = 1e-6
 
 
@@ -592,6 +676,9 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
     for the sensors of `scenario`, the log's Scenario, or of any scenario when None), the
     channels Eq. 1-2 of the taxels and pad accelerations (logged_channels_problem). Every
     reader applies it."""
+    problem = array_types_problem(arrays)
+    if problem:
+        return problem
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue
@@ -620,6 +707,16 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
             or sensor_range_problem(arrays, scenario) or logged_channels_problem(arrays)
             or object_path_problem(arrays, scenario)
             or object_orientation_problem(arrays) or joint_angle_problem(arrays))
+
+
+def array_types_problem(arrays: dict) -> str | None:
+    """The first array of ARRAY_FIELDS in `arrays` that is not float64 (what the loggers
+    record and TrialLog.save writes), named with its dtype, else None."""
+    for name in ARRAY_FIELDS:
+        if name in arrays and np.asarray(arrays[name]).dtype != np.float64:
+            return (f"'{name}' holds {np.asarray(arrays[name]).dtype} values, but a trial "
+                    "log's arrays are float64")
+    return None
 
 
 def logger_periods(scenario) -> dict:
@@ -717,9 +814,9 @@ def object_orientation_problem(arrays: dict) -> str | None:
 
 # The logged channels with a physical range: (their columns' names, the columns checked, low,
 # high, why). Measured taxels, pad accelerations and the object's position have the ranges of
-# the log's sensors and workspace instead (sensor_range_problem); SA has none here (the force
-# transducer's noise dips below zero at rest); true_taxels is a contact force along the pad
-# normal, not a magnitude.
+# the log's sensors and workspace instead (sensor_range_problem), and so has true_taxels (the
+# ideal force transducer's); SA has none here (the force transducer's noise dips below zero at
+# rest).
 _PHYSICAL_RANGES = {
     "gripper_command": (ru.COMMAND_NAMES, range(ru.COMMAND_SIZE), 0.0, ru.BYTE_MAX,
                         "the 2F-85's request registers are bytes"),
@@ -797,6 +894,21 @@ class SensorBounds:
     whose: str
     object_speed: float = 0.0
     gravity: float = 0.0
+    true_taxels: tuple[float, float] = (0.0, math.inf)
+
+
+# Why the noise-free taxel forces (true_taxels) lie where sensor_bounds puts them.
+_TRUE_TAXELS_WHY = ("a noise-free taxel force: what an ideal force taxel (no offset, noise or "
+                    "quantization) reads, a share of its pad's normal force")
+
+
+def ideal_taxel_range() -> tuple[float, float]:
+    """[N] The range of a noise-free taxel force (true_taxels): taxel_reading_range of the
+    ideal force transducer (no offset, noise or quantization), 0 to the 2F-85's whole grip
+    force (tactile_pads.taxel_reading_range)."""
+    from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig, taxel_reading_range
+    return tuple(float(value) for value in taxel_reading_range(TactileSensorConfig(
+        transducer="force", offset_n=0.0, noise_std_n=0.0, quantization_n=0.0)))
 
 
 def _pad_speed_mps() -> float:
@@ -876,20 +988,23 @@ def sensor_bounds(scenario, duration_s: float) -> SensorBounds:
     xyz = object_position_bounds(duration_s, speed, gravity)
     return SensorBounds(taxels=(min(r[0] for r in taxel_ranges), max(r[1] for r in taxel_ranges)),
                         taxel_unit=unit, pad_acceleration=pad, object_xyz=xyz, whose=whose,
-                        object_speed=speed, gravity=gravity)
+                        object_speed=speed, gravity=gravity, true_taxels=ideal_taxel_range())
 
 
 def _sensor_limits(bounds: SensorBounds, duration_s: float) -> list[tuple]:
     """(array, column, its name or "", low, high, unit, why) of each column sensor_range_problem
-    checks: the taxels and the pads' accelerations, then Eq. 1's SA (a pad's 12 taxels' sum)
-    and Eq. 2's RA (the size of its 3 axes' vector) computed from them (a sample out of range
-    is named before the channel it makes so), the object's position (object_state 4 to 6)."""
+    checks: the taxels, their noise-free forces and the pads' accelerations, then Eq. 1's SA
+    (a pad's 12 taxels' sum) and Eq. 2's RA (the size of its 3 axes' vector) computed from
+    them (a sample out of range is named before the channel it makes so), the object's
+    position (object_state 4 to 6)."""
     whose, (low, high), unit = bounds.whose, bounds.taxels, bounds.taxel_unit
     pad = bounds.pad_acceleration
     taxel_why = f"what {whose} taxels can read (their model, noise to 10 sigma)"
     pad_why = f"what {whose} RA transducer can read (its full scale)"
     rows = [("taxels", column, "", low, high, unit, taxel_why)
             for column in range(len(CHANNEL_NAMES) // 2 * TAXELS_PER_PAD)]
+    rows += [("true_taxels", column, "", *bounds.true_taxels, "N", _TRUE_TAXELS_WHY)
+             for column in range(len(CHANNEL_NAMES) // 2 * TAXELS_PER_PAD)]
     rows += [("pad_acceleration", column, "", -pad, pad, "m/s^2", pad_why)
              for column in range(len(RA_CHANNELS) * PAD_ACCELERATION_AXES)]
     rows += [("channels", column, CHANNEL_NAMES[column], TAXELS_PER_PAD * low,
@@ -910,8 +1025,8 @@ def sensor_range_problem(arrays: dict, scenario=None) -> str | None:
     `arrays` (finite, of their shapes) outside the range its sensors or the workspace give it
     (sensor_bounds of `scenario`, over the log's simulated time), named with its column and
     value, else None."""
-    if not any(name in arrays for name in ("taxels", "channels", "pad_acceleration",
-                                           "object_state")):
+    if not any(name in arrays for name in ("taxels", "true_taxels", "channels",
+                                           "pad_acceleration", "object_state")):
         return None
     duration = _time_span(arrays)[1]
     for name, column, label, low, high, unit, why in _sensor_limits(

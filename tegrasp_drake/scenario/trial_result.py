@@ -13,6 +13,8 @@ from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, check_ranges, declared
 from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.object_placement import ObjectPlacementConfig
+from tegrasp_drake.scenario.physical_event_search import (SEARCH_FROM,
+                                                          physical_event_search_starts)
 from tegrasp_drake.control.grasp_modes import Mode, Transition
 
 # The farthest an object's height can be from the table top it started on [m]: in the hand,
@@ -208,7 +210,8 @@ class TrialResult:
     def _check_events(self, name: str) -> None:
         """The physical events and latencies as judge_trial gives them (runs/trial.py): a
         physical event is "hit" or one of the event transitions (REQUIRED_TRANSITIONS) the
-        timeline takes; a latency is keyed by an event transition (REQUIRED_TRANSITIONS) and
+        timeline takes, not before its search start (physical_event_search_starts); a
+        latency is keyed by an event transition (REQUIRED_TRANSITIONS) and
         not below -FALSE_TRIGGER_MARGIN_S (a detection earlier by more is a false trigger,
         counted and given no latency); its relation to the timeline is _check_latency's."""
         from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, event_transition
@@ -223,6 +226,15 @@ class TrialResult:
                 raise ConfigError(f"{name}: field 'physical_events.{key}' but no transition "
                                   f"{key} was taken (a physical event is looked for behind a "
                                   "transition the trial took)")
+        starts = physical_event_search_starts(self.transitions)
+        for key, value in self.physical_events.items():
+            if key in starts and value is not None and value < starts[key]:
+                mode = SEARCH_FROM[key].label
+                raise ConfigError(f"{name}: field 'physical_events.{key}' is "
+                                  f"{number_text(value)} s, before {number_text(starts[key])} "
+                                  f"s, when the trial last entered {mode} before its {key} "
+                                  "transition (the event is searched from there); correct the "
+                                  "event's time or the timeline")
         for key, latency in self.detection_latency_s.items():
             if key not in REQUIRED_TRANSITIONS:
                 raise ConfigError(f"{name}: field 'detection_latency_s.{shorten(key)}' names "
@@ -335,7 +347,8 @@ class TrialResult:
     def _check_controller(self, name: str) -> None:
         """The relations with the controller that wrote the result: a registered name ("":
         not said), corrective actions among the controllers' (corrective_actions), and the
-        transitions' scores within what its detector gives (transition_scores_problem)."""
+        transitions' triggers, codes and scores what it gives (transition_trigger_problem,
+        transition_code_problem, transition_scores_problem)."""
         from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
         if self.controller and self.controller not in CONTROLLER_NAMES:
             raise ConfigError(f"{name}: field 'controller' must be one of "
@@ -347,9 +360,14 @@ class TrialResult:
                 if action not in known:
                     raise ConfigError(f"{name}: field 'corrective_actions[{k}]' must be one of "
                                       f"{', '.join(sorted(known))}, got {shorten(repr(action))}")
-        problem = transition_scores_problem(self.transitions, self.controller)
+        problem = transition_trigger_problem(self.transitions, self.controller)
         if problem:
-            raise ConfigError(f"{name}: field {problem}")
+            raise ConfigError(f"{name}: field {problem}; correct the trigger or the result's "
+                              "'controller'")
+        for check in (transition_code_problem, transition_scores_problem):
+            problem = check(self.transitions, self.controller)
+            if problem:
+                raise ConfigError(f"{name}: field {problem}")
 
     def to_dict(self) -> dict:
         """The JSON form: all fields but `log`; transitions as dicts, the final mode by label."""
@@ -434,4 +452,48 @@ def transition_scores_problem(transitions, controller: str | None) -> str | None
                 return (f"'transitions[{k}].scores' holds {number_text(score)}, outside "
                         f"{number_text(low)} to {number_text(high)} ({SCORE_RANGE['why']}, from "
                         f"the {controller} controller's detector)")
+    return None
+
+
+def transition_trigger_problem(transitions, controller: str | None) -> str | None:
+    """"'transitions[k].trigger' ..." (its time, its trigger, those the controller fires) if
+    a transition (a Transition) carries a trigger the controller named `controller` cannot
+    fire (ControllerEntry.triggers), else None; None too for a name no controller has ("":
+    not said), which the caller names. The caller says what to do."""
+    from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_entry
+    if controller not in CONTROLLER_NAMES:
+        return None
+    fired = controller_entry(controller).triggers()
+    for k, entry in enumerate(transitions):
+        if entry.trigger not in fired:
+            return (f"'transitions[{k}].trigger' (at {number_text(entry.t)} s) is "
+                    f"{shorten(str(entry.trigger))}, which the {controller} controller never "
+                    f"fires (it fires {', '.join(sorted(fired))})")
+    return None
+
+
+def transition_code_problem(transitions, controller: str | None) -> str | None:
+    """"'transitions[k].code' ..." if a transition's code (the deciding rule's name, which
+    Transition itself checks names a rule of some controller) names no rule of the rule
+    table of `controller`, or a rule that does not apply in the mode the transition left;
+    the open-loop script's transitions carry none. None for a name no controller has."""
+    from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_entry
+    if controller not in CONTROLLER_NAMES:
+        return None
+    table = controller_entry(controller).rule_table()
+    names = set() if table is None else {rule.name for rule in table.all_rules()}
+    for k, entry in enumerate(transitions):
+        if entry.code is None:
+            continue
+        where = f"'transitions[{k}].code' (at {number_text(entry.t)} s) is {entry.code!r}"
+        if entry.code not in names:
+            rules = ("it has no rules, so its transitions carry no code" if table is None
+                     else "docs/controller.md lists its rules")
+            return (f"{where}, which names no rule of the {controller} controller ({rules}); "
+                    "correct the code or the result's 'controller'")
+        if not table.rule(entry.code).applies_in(entry.from_mode):
+            return (f"{where}, a rule that does not apply in "
+                    f"{entry.from_mode.label}, the mode the transition left "
+                    "(docs/controller.md lists each rule's modes): correct the code or "
+                    "the transition's 'from'")
     return None

@@ -30,7 +30,9 @@ from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, read_json
                                      remove_stale_staging_files_in, replace_problem,
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
+from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_entry
 from tegrasp_drake.rig.echo import shorten, shown
+from tegrasp_drake.scenario.object_placement import result_offset_problem
 from tegrasp_drake.sweep.spec import TrialSpec, offset_key, trial_problem
 
 RECORD_FORMAT = "tegrasp-sweep-record"
@@ -297,13 +299,6 @@ def _fsync_folder(folder: Path) -> None:
 _RESULT_OF_TRIAL = (("seed", "seed"), ("controller", "controller"), ("object", "object_name"))
 
 
-# How far a result's offset may lie from its trial's marker + jitter [m]: the trial function
-# sets it to that sum (scenario_from_trial_spec) and JSON carries a float exactly, so only a
-# sum taken in another order differs, by ~1e-17 m; a nanometre is far below anything the
-# simulation resolves and far above that rounding.
-OFFSET_TOLERANCE_M = 1e-9
-
-
 def _offset_problem(result: dict, trial: dict) -> str | None:
     """Why the result's offset_m (where it has one) is not where its trial put the object,
     the marker moved by the jitter (x normal to the palm, y along the stroke), or None."""
@@ -311,12 +306,9 @@ def _offset_problem(result: dict, trial: dict) -> str | None:
         return None
     jitter = trial["perturbation"]
     expected = [trial["marker_dx_m"] + jitter["dx_m"], trial["marker_dy_m"] + jitter["dy_m"]]
-    offset = result["offset_m"]
-    if len(offset) != 2 or any(abs(a - b) > OFFSET_TOLERANCE_M
-                               for a, b in zip(offset, expected)):
-        return (f"its result's offset_m {shorten(repr(offset))} m is not its trial's marker + "
-                f"jitter [{expected[0]!r}, {expected[1]!r}] m (where the trial puts the object)")
-    return None
+    problem = result_offset_problem(result["offset_m"], expected)
+    return (f"its result's offset_m {problem}, its trial's marker + jitter (where the trial "
+            "puts the object)") if problem else None
 
 
 def _sim_time_problem(result: dict) -> str | None:
@@ -336,15 +328,21 @@ def _sim_time_problem(result: dict) -> str | None:
 _SHA256_HEX = re.compile(r"[0-9a-f]{64}")
 
 
-def events_problem(events) -> str | None:
+def events_problem(events, controller=None) -> str | None:
     """Why `events` is not what a record says of the memorized events a trial matched
     against (trial_function.events_identity: null, or {"folder": the folder asked for, absolute
     (older records name it relative), or null; "sha256": the SHA-256 of their content}), or
-    None."""
+    None; the trial's `controller` (its name; another value is not checked here) must read
+    memorized events for them to be named (ControllerEntry.reads_memorized_events)."""
     if events is None:
         return None
     if not (isinstance(events, dict) and set(events) == {"folder", "sha256"}):
         return "events is neither null nor {\"folder\", \"sha256\"}"
+    if (isinstance(controller, str) and controller in CONTROLLER_NAMES
+            and not controller_entry(controller).reads_memorized_events):
+        return (f"events names memorized events, but its trial's {controller} controller reads "
+                "none (a sweep records null for it): the record was edited or is another "
+                "controller's; set events to null or correct the trial's controller")
     if not (isinstance(events["sha256"], str) and _SHA256_HEX.fullmatch(events["sha256"])):
         return (f"events.sha256 must be a SHA-256 (64 lowercase hex digits), got "
                 f"{shorten(repr(events['sha256']))}")
@@ -385,7 +383,9 @@ def check_record(record, expected_file_name: str | None = None) -> str | None:
         return problem
     if record["format"] != RECORD_FORMAT:
         return f"format {record['format']!r} is not {RECORD_FORMAT!r}"
-    problem = events_problem(record.get("events"))
+    trial = record.get("trial")
+    problem = events_problem(record.get("events"),
+                             trial.get("controller") if isinstance(trial, dict) else None)
     if problem is not None:
         return problem
     content = {key: value for key, value in record.items() if key != "checksum"}

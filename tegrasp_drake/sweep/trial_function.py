@@ -11,12 +11,12 @@ from typing import Annotated
 import numpy as np
 
 from tegrasp_drake.runs.trial import run_trial
-from tegrasp_drake.sweep.records import (OFFSET_TOLERANCE_M, TRIALS_FOLDER, canonical_json,
-                                         record_file_name)
+from tegrasp_drake.sweep.records import TRIALS_FOLDER, canonical_json, record_file_name
 from tegrasp_drake.scenario.trial_log_file import (TrialLog, TrialLogError, load_trial_log,
                                                    logged_scenario, save_log_copy)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.scenario.object_placement import result_offset_problem
 from tegrasp_drake.rig.typed_yaml import ConfigError
 
 logger = logging.getLogger(__name__)
@@ -70,8 +70,8 @@ def record_log_problem(log: TrialLog, record: dict) -> str | None:
     controller it ran (meta 'controller'), the object it grasped, its seed (the scenario's
     random_seed) and where it placed the object (placement.offset), in its scenario and its
     result where it holds them, must be the record's trial's (controller, object_name, seed,
-    marker + perturbation offset, within OFFSET_TOLERANCE_M). A log copied or renamed onto
-    another trial's name holds another trial."""
+    marker + perturbation offset: result_offset_problem). A log copied or renamed onto another
+    trial's name holds another trial."""
     trial = record["trial"]
     scenario, _ = logged_scenario(log.meta)
     jitter = trial["perturbation"]
@@ -94,8 +94,7 @@ def record_log_problem(log: TrialLog, record: dict) -> str | None:
                if name in result]
     for field, logged, trial_field, expected in checks:
         if field.endswith("offset") or field.endswith("offset_m"):
-            same = (len(logged) == 2 and all(abs(a - b) <= OFFSET_TOLERANCE_M
-                                             for a, b in zip(logged, expected)))
+            same = result_offset_problem(logged, expected) is None
         else:
             same = logged == expected
         if not same:

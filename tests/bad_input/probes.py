@@ -149,8 +149,31 @@ def channels_of(arrays) -> np.ndarray:
                                 scale[:, 0] * np.linalg.norm(axes[:, 3:] / scale, axis=1)])
 
 
+def logged_phases(meta: dict, t_slow) -> np.ndarray:
+    """The 'phase' samples at `t_slow` [s] a writer logs for `meta`'s timeline: the Mode of
+    its last transition at or before each sample (Reach before the first), or the index of
+    the last phase of 'phases' started by then ('phase_starts'); zeros without either."""
+    from tegrasp_drake.control.grasp_modes import Mode
+    t_slow = np.asarray(t_slow, dtype=float)
+    phase = np.zeros(len(t_slow))
+    if meta.get("transitions"):
+        for entry in meta["transitions"]:
+            phase[t_slow >= entry["t"]] = float(Mode.from_label(entry["to"]))
+    elif meta.get("phases") and meta.get("phase_starts"):
+        for k, name in enumerate(meta["phases"]):
+            if name in meta["phase_starts"]:
+                phase[t_slow >= meta["phase_starts"][name]] = float(k)
+    return phase
+
+
 def trial_log_with(path, meta=None, **arrays):
-    """A small trial log (trial_log's) with `meta` merged into its metadata."""
+    """A small trial log (trial_log's) with `meta` merged into its metadata, its 'phase' (when
+    not given) that of `meta`'s timeline (logged_phases)."""
+    if "phase" not in arrays and isinstance(meta, dict):
+        try:
+            arrays["phase"] = logged_phases(meta, arrays.get("t_slow", np.linspace(0, 0.1, 11)))
+        except (TypeError, ValueError, KeyError, AttributeError):  # a probe's malformed meta
+            pass
     trial_log(path, **arrays)
     with np.load(path) as data:
         contents = {name: data[name] for name in data.files}
@@ -400,8 +423,8 @@ def result_refused(data, expected):
     assert expected in message and "\n" not in message, message
 
 
-def logged_transition(t, from_mode, to_mode, scores=None):
-    entry = {"t": t, "from": from_mode, "to": to_mode, "trigger": "memorized_event",
+def logged_transition(t, from_mode, to_mode, scores=None, trigger="memorized_event"):
+    entry = {"t": t, "from": from_mode, "to": to_mode, "trigger": trigger,
              "reason": "event"}
     return {**entry, "scores": scores} if scores is not None else entry
 

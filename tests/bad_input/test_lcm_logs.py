@@ -520,10 +520,11 @@ def forged_transition(utime, from_mode, to_mode):
     return message.encode()
 
 
-def write_log(path, forged_at=None, forged=()):
+def write_log(path, forged_at=None, forged=(), transitions=None):
     """A run's log (the synthetic grasp at 1 kHz, its transitions, an arm status every
     10 ms) with the (channel, data) messages `forged` written after tactile tick
-    `forged_at`, as another publisher on the bus would have them logged."""
+    `forged_at`, as another publisher on the bus would have them logged; `transitions`:
+    the timeline logged instead of the run's (logged_transitions)."""
     trial = synthetic_grasp(GRASP)
     log = lcm.EventLog(str(path), "w", overwrite=True)
     info = lcmt_tegrasp_run_info()
@@ -534,7 +535,7 @@ def write_log(path, forged_at=None, forged=()):
     def write(channel, data):
         log.write_event(WALL_START_US + round(now[0] * 1e6), channel, data)
     write(RUN_INFO_CHANNEL, info.encode())
-    transitions = iter(logged_transitions())
+    transitions = iter(logged_transitions() if transitions is None else transitions)
     pending = next(transitions, None)
     for k, t in enumerate(trial.t_ra):
         now[0] = t
@@ -599,6 +600,27 @@ def test_a_forged_transition_is_skipped_and_said_and_the_timeline_kept(
     printed = [line.split("]", 1)[1].split("(")[0].strip() for line in out.splitlines()
                if " -> " in line]
     assert printed == [f"{t['from']} -> {t['to']}" for t in genuine.transitions]
+
+
+# Rule: a run's timeline holds only triggers its controller (TEGRASP_RUN_INFO's) fires; a
+# trigger another controller's detector fires is damage, said, the timeline kept.
+def test_a_trigger_the_logged_controller_never_fires_is_damage(genuine, tmp_path, capfd):
+    timeline = logged_transitions()
+    timeline[1] = {**timeline[1], "trigger": "heuristic_event"}
+    path = write_log(tmp_path / "run.lcmlog", transitions=timeline)
+    log = read_run_log(path)
+    assert [t["trigger"] for t in log.transitions] == [t["trigger"] for t in timeline]
+    (words,) = [words for words in log.damage if "never fires" in words]
+    assert words.startswith(f"its {TRANSITION_CHANNEL} timeline's 'transitions[1].trigger' "
+                            "(at "), words
+    assert ("is heuristic_event, which the memorized controller never fires (it fires "
+            "corrective, corrective_event, fault, memorized_event, threshold, timer)") in words
+    assert not genuine.damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3 and "damaged log" in text and "never fires" in text, text
+    code, text = _replay([str(genuine.path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 0 and "damaged log" not in text, text
 
 
 def test_a_replay_against_another_objects_events_says_whose_run_it_was(genuine, capfd):

@@ -322,7 +322,8 @@ def _forge_record(folder, edit):
 # record holding both a result and an error, is corrupt (kept aside, its trial run again).
 @pytest.mark.parametrize("edit, words", [
     (lambda r: r["result"].update(seed=r["trial"]["seed"] + 1), "result's seed"),
-    (lambda r: r["result"].update(controller="heuristic"), "result's controller"),
+    # another controller that fires the trial's triggers (else those are named first)
+    (lambda r: r["result"].update(controller="taxel_aware"), "result's controller"),
     (lambda r: r["result"].update(object="thin_cylinder"), "result's object"),
     (lambda r: r.update(status="error", error={"type": "RuntimeError", "message": "x"}),
      "an error and no result"),
@@ -505,6 +506,28 @@ def test_a_record_whose_result_is_not_its_trials_is_corrupt_and_runs_again(
     assert (summary.ran, summary.corrupt) == (1, (str(path),))
 
 
+# Rule: a record names memorized events only for a controller that reads them; the open-loop
+# script reads none, so a sweep records null for it.
+@pytest.mark.parametrize("controller, corrupt", [("open_loop", True), ("memorized", False)])
+def test_a_record_naming_events_its_controller_never_reads_is_corrupt(
+        tmp_path, controller, corrupt):
+    spec = SweepSpec(objects=("box",), controllers=(controller,), attempts=1,
+                     grid=((0.0, 0.0),))
+    summary = run_sweep(spec, fake_trial, tmp_path, workers=1, progress=False)
+    path = record_path(tmp_path, summary.trial_ids[0])
+    record = json.loads(path.read_text())
+    record["events"] = {"folder": None, "sha256": "0" * 64}
+    del record["checksum"]
+    record["checksum"] = _checksum(record)
+    path.write_text(json.dumps(record))
+    reason = load_records(tmp_path).corrupt.get(path)
+    if corrupt:
+        assert reason and ("events names memorized events, but its trial's open_loop "
+                           "controller reads none") in reason, reason
+    else:
+        assert reason is None
+
+
 # Rule: a result's real-time factor is its simulated time over its wall time, as run_trial
 # writes it; a factor of 1e300 on a 8 s trial that took 2 s is refused.
 @pytest.mark.parametrize("data, words", [
@@ -532,7 +555,7 @@ def _first_trial() -> dict:
     return expand_trials(ONE_TRIAL_SPEC)[0].to_dict()
 
 
-@pytest.mark.parametrize("field, value", [("seed", 1), ("controller", "heuristic"),
+@pytest.mark.parametrize("field, value", [("seed", 1), ("controller", "taxel_aware"),
                                           ("object", "thin_cylinder"),
                                           ("offset_m", [0.0123, -0.0045])])
 def test_a_result_that_names_another_trial_is_an_invalid_result(field, value):

@@ -335,7 +335,8 @@ def test_correlation_scores_outside_minus_one_to_one_are_refused(controller):
 
 def test_the_heuristic_detectors_ratios_are_read():
     from tegrasp_drake.scenario.trial_result import TrialResult
-    transitions = [logged_transition(1.0, "Reach", "Load", [5.2, 4.35, 0.5, 0.1])]
+    transitions = [logged_transition(1.0, "Reach", "Load", [5.2, 4.35, 0.5, 0.1],
+                                     trigger="heuristic_event")]
     result = TrialResult.from_dict(whole_result(**{"hold_success": False, "controller": "heuristic",
                                     "final_mode": "Load", "transitions": transitions}))
     assert result.transitions[0].scores[0] > 1.0

@@ -103,3 +103,17 @@ def test_the_rule_codes_are_the_names_of_every_registered_tables_rules():
     assert {"reach_event", "closed_on_nothing", "finger_strike", "load_time"} <= names
     guards = {guard.name for table in tables for guard in table.all_guards()}
     assert guards and not guards & rule_codes()  # a guard holds rules back, it decides nothing
+
+
+def test_each_controller_fires_the_triggers_its_builders_and_rules_give():
+    """The open-loop script times its phases; a state machine fires every trigger but an
+    event detector's, and its own detector's (the builder's mark); the committed records'
+    triggers lie within these (tests/sweep/test_records.py loads them all)."""
+    from tegrasp_drake.control.grasp_modes import Trigger
+    fired = {entry.name: entry.triggers() for entry in CONTROLLERS}
+    assert fired["open_loop"] == {Trigger.TIMER}
+    shared = {Trigger.TIMER, Trigger.THRESHOLD, Trigger.CORRECTIVE, Trigger.FAULT,
+              Trigger.CORRECTIVE_EVENT}
+    assert fired["heuristic"] == shared | {Trigger.HEURISTIC_EVENT}
+    for name in ("memorized", "taxel_aware", "fixed_load_time"):
+        assert fired[name] == shared | {Trigger.MEMORIZED_EVENT}, name

@@ -234,16 +234,66 @@ def _edited(path: str, value) -> dict:
      "[re_reach, re_reach, re_reach, re_reach]"),
     ("corrective_actions", ["re_reach", "re_reach", "re_reach", "re_reach", "avoid"],
      "field 'corrective_actions' must be the actions"),
+    ("transitions.8.trigger", "heuristic_event",
+     "field 'transitions[8].trigger' (at 11.3 s) is heuristic_event, which the taxel_aware "
+     "controller never fires (it fires corrective, corrective_event, fault, memorized_event, "
+     "threshold, timer); correct the trigger or the result's 'controller'"),
+    ("controller", "heuristic", "field 'transitions[8].trigger' (at 11.3 s) is "
+     "memorized_event, which the heuristic controller never fires"),
+    ("controller", "open_loop", "field 'transitions[0].trigger' (at 3.075 s) is corrective, "
+     "which the open_loop controller never fires (it fires timer)"),
+    ("physical_events.place_unload", 15.0, "field 'physical_events.place_unload' is 15 s, "
+     "before 15.85 s, when the trial last entered Place before its place_unload transition "
+     "(the event is searched from there); correct the event's time or the timeline"),
+    ("physical_events.reach_load", 10.0, "field 'physical_events.reach_load' is 10 s, before "
+     "10.45 s, when the trial last entered Reach before its reach_load transition"),
 ])
 def test_a_committed_result_edited_to_contradict_itself_is_refused(path, value, words):
     """Each edit of a real result gives one judge_trial cannot: a timeline whose modes do not
     chain, a latency earlier than a false trigger or of a transition not detected, a physical
-    event that is none or behind no transition taken, a failure no transition gave."""
+    event that is none, behind no transition taken or before its search starts, a failure no
+    transition gave, a trigger the result's controller never fires."""
     TrialResult.from_dict(_edited("failure", ""))  # the record as it is reads
     with pytest.raises(ValueError) as refused:
         TrialResult.from_dict(_edited(path, value))
     message = str(refused.value)
     assert "\n" not in message and words in message, message
+
+
+@pytest.mark.parametrize("controller, code, from_mode, words", [
+    ("memorized", "finger_strike", Mode.REACH, "field 'transitions[0].code' (at 1 s) is "
+     "'finger_strike', which names no rule of the memorized controller (docs/controller.md "
+     "lists its rules); correct the code or the result's 'controller'"),
+    ("open_loop", "reach_event", Mode.REACH, "which names no rule of the open_loop controller "
+     "(it has no rules, so its transitions carry no code)"),
+    ("memorized", "released", Mode.REACH, "field 'transitions[0].code' (at 1 s) is "
+     "'released', a rule that does not apply in Reach, the mode the transition left"),
+])
+def test_a_transition_coded_by_a_rule_its_controller_lacks_or_not_of_its_mode_is_refused(
+        controller, code, from_mode, words):
+    trigger = Trigger.TIMER if controller == "open_loop" else Trigger.MEMORIZED_EVENT
+    entry = Transition(1.0, from_mode, Mode.LOAD, trigger, "Reach-Load event", code=code)
+    with pytest.raises(ConfigError) as refused:
+        TrialResult(controller=controller, transitions=(entry,), final_mode=Mode.LOAD)
+    assert words in str(refused.value), refused.value
+    TrialResult(controller="taxel_aware", final_mode=Mode.LOAD, transitions=(
+        Transition(1.0, Mode.REACH, Mode.LOAD, Trigger.MEMORIZED_EVENT, "Reach-Load event",
+                   code="reach_event"),))
+
+
+def test_the_search_starts_at_the_last_entry_before_the_last_event_transition():
+    """First contact and the settled grip after the last Reach before them, the table touch
+    after the last Place; a Reach entered after the Load-Lift does not move its start."""
+    from tegrasp_drake.scenario.physical_event_search import physical_event_search_starts
+    timeline = [Transition(1.0, Mode.REACH, Mode.RE_REACH, Trigger.CORRECTIVE, "one-sided"),
+                Transition(2.0, Mode.RE_REACH, Mode.REACH, Trigger.CORRECTIVE, "re-centred"),
+                _reach_load(3.0), _load_lift(4.0),
+                Transition(5.0, Mode.LIFT, Mode.HOLD, Trigger.TIMER, "lift motion ended"),
+                Transition(8.0, Mode.HOLD, Mode.PLACE, Trigger.TIMER, "held 3 s"),
+                Transition(9.0, Mode.PLACE, Mode.UNLOAD, Trigger.MEMORIZED_EVENT, "touch")]
+    assert physical_event_search_starts(timeline) == {
+        "reach_load": 2.0, "load_lift": 2.0, "place_unload": 8.0}
+    assert physical_event_search_starts(timeline[2:4]) == {"reach_load": 0.0, "load_lift": 0.0}
 
 
 def test_a_latency_is_its_detections_time_minus_its_events_to_round_off():
@@ -264,6 +314,11 @@ def test_a_latency_is_its_detections_time_minus_its_events_to_round_off():
                     physical_events={"reach_load": 3.3 - 0.043},
                     detection_latency_s={"reach_load": 0.043 + 1e-9})
     with pytest.raises(ConfigError, match=r"must be transitions\[3\].t - physical_events"):
+        TrialResult(transitions=(_reach_load(1.0), *again), final_mode=Mode.LOAD,
+                    physical_events={"reach_load": 2.5},
+                    detection_latency_s={"reach_load": 0.043}, corrective_actions=["re_reach"])
+    # The first detection's event, before the Reach the last detection came in.
+    with pytest.raises(ConfigError, match="'physical_events.reach_load' is 0.957 s, before 2 s"):
         TrialResult(transitions=(_reach_load(1.0), *again), final_mode=Mode.LOAD,
                     physical_events={"reach_load": 1.0 - 0.043},
                     detection_latency_s={"reach_load": 0.043}, corrective_actions=["re_reach"])
