@@ -78,14 +78,16 @@ class GraspController:
         return self.state_machine.GetMyContextFromRoot(root_context)
 
     def transitions(self, root_context) -> list[Transition]:
-        """The transitions so far (open loop: the script's mode changes, without scores)."""
+        """The transitions so far (open loop: the script's mode changes, without scores; a
+        phase that lasts no time, grasp.hold_s = 0, is passed over as sample_plan does)."""
         if self.segments is None:
             return list(self.state_machine.transitions(self._system_context(root_context)))
         t_now = root_context.get_time()
         log, previous = [], Mode.REACH
         for segment in self.segments[1:]:
             mode = _MODE_OF_PHASE[segment.phase]
-            if segment.t_start <= t_now and mode != previous:
+            lasts = segment.t_end > segment.t_start
+            if lasts and segment.t_start <= t_now and mode != previous:
                 log.append(Transition(t=segment.t_start, from_mode=previous, to_mode=mode,
                                       trigger=Trigger.TIMER,
                                       reason=f"script phase {segment.phase}"))

@@ -537,16 +537,23 @@ def device_time_damage(device_utimes) -> str | None:
             "frames from elsewhere, or corrupt bytes; the messages are kept")
 
 
+def _logged_text(info: lcmt_tegrasp_run_info | None, field: str):
+    """(the text of TEGRASP_RUN_INFO's `field`, None); ("", None) when there is none; ("",
+    what is wrong) when it is not UTF-8 (_not_utf8_problem)."""
+    text = getattr(info, field) if info is not None else ""
+    if not text:
+        return "", None
+    problem = _not_utf8_problem(text)
+    return ("", problem) if problem else (text, None)
+
+
 def logged_hardware_config(info: lcmt_tegrasp_run_info | None):
     """(the HardwareStationConfig of a run's TEGRASP_RUN_INFO hardware_yaml, None); (None,
     None) when it holds none; or (None, what is wrong) when the text is not one (bytes that
     are not UTF-8, or the field that does not load), as logged_scenario. Only its fields are
     read and checked against their ranges: its devices and LCM URL are the recording host's."""
-    if info is None or not info.hardware_yaml:
-        return None, None
-    text = info.hardware_yaml
-    problem = _not_utf8_problem(text)
-    if problem:
+    text, problem = _logged_text(info, "hardware_yaml")
+    if not text:
         return None, problem
     source = "its hardware_yaml"
     try:
@@ -650,11 +657,8 @@ def logged_scenario(info: lcmt_tegrasp_run_info | None):
     (None, what is wrong) when its scenario_yaml is not a scenario: bytes that are not UTF-8
     (the generated decoder puts U+FFFD for them) named by their byte, else the field that
     does not load (ConfigError), escaped to one line."""
-    if info is None or not info.scenario_yaml:
-        return None, None
-    text = info.scenario_yaml
-    problem = _not_utf8_problem(text)
-    if problem:
+    text, problem = _logged_text(info, "scenario_yaml")
+    if not text:
         return None, problem
     try:
         return scenario_from_yaml(text, "its scenario_yaml"), None

@@ -72,9 +72,6 @@ class TrialLog:
         channels that are not Eq. 1-2 of the taxels and accelerations, metadata that
         disagrees with them): what the one reader refuses is never written."""
         path = pathlib.Path(path)
-        if not isinstance(self.meta, dict):
-            raise TrialLogError(f"TrialLog.save: '{path}' not written: meta is a "
-                                f"{type(self.meta).__name__}, not the metadata's dict")
         meta = dict(self.meta, format_version=FORMAT_VERSION)
         arrays = {name: getattr(self, name) for name in ARRAY_FIELDS}
         problem = trial_log_problem(meta, arrays)

@@ -356,36 +356,37 @@ def test_event_numbers_starting_again_are_one_place_of_damage(tmp_path):
     assert damage[0].startswith("1 event number(s) do not follow"), damage
 
 
-# Rule: a taxel force outside what the taxel model can read (taxel_reading_range) is an
-# impossible value, as 1e30 m/s^2 is.
-def test_taxel_forces_no_taxel_reads_are_damage(tmp_path):
-    def negative(k, message):
+def _every_third_tactile_damaged(tmp_path, **fields):
+    """(path, read log) of a run log whose every third tactile message has `fields` set,
+    checked to be one damage line that counts those messages, all of them skipped."""
+    def altered(k, message):
         if k % 3 == 2:
-            message.left_taxel_forces = [-50.0] * 12
+            for name, value in fields.items():
+                setattr(message, name, value)
         return message
-    path = _run_log(tmp_path / "run.lcmlog", tactile=negative)
+    path = _run_log(tmp_path / "run.lcmlog", tactile=altered)
     log = read_run_log(path)
     logged = log.message_counts[TACTILE_CHANNEL]
     assert len(log.damage) == 1, log.damage
     assert f"{logged // 3} message(s) on {TACTILE_CHANNEL}" in log.damage[0], log.damage
     assert len(log.tactile["t"]) == logged - logged // 3
+    return path, log
+
+
+# Rule: a taxel force outside what the taxel model can read (taxel_reading_range) is an
+# impossible value, as 1e30 m/s^2 is.
+def test_taxel_forces_no_taxel_reads_are_damage(tmp_path):
+    _every_third_tactile_damaged(tmp_path, left_taxel_forces=[-50.0] * 12)
 
 
 # Rule: a pad acceleration past the full scale of the run's RA transducer (its scenario's, the
 # bound a trial log's pad accelerations are held to, or the myRIO's at the default
 # calibration) is an impossible value, skipped and counted; the replay exits 3.
 def test_pad_accelerations_past_the_ra_transducers_full_scale_are_damage(tmp_path, capfd):
-    def shaken(k, message):
-        if k % 3 == 2:
-            message.left_pad_acceleration = [5000.0, 0.0, 0.0]  # 2527 m/s^2 at the defaults
-        return message
-    path = _run_log(tmp_path / "run.lcmlog", tactile=shaken)
-    log = read_run_log(path)
-    logged = log.message_counts[TACTILE_CHANNEL]
-    assert len(log.damage) == 1, log.damage
-    assert f"{logged // 3} message(s) on {TACTILE_CHANNEL}" in log.damage[0], log.damage
+    # 5000 m/s^2: past the 2527 m/s^2 full scale at the defaults
+    path, log = _every_third_tactile_damaged(tmp_path,
+                                             left_pad_acceleration=[5000.0, 0.0, 0.0])
     assert "accelerations beyond" in log.damage[0], log.damage
-    assert len(log.tactile["t"]) == logged - logged // 3
     save_memorized_events(tmp_path / "events", EVENTS.values())
     code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
     assert code == 3, text

@@ -31,3 +31,17 @@ def test_an_open_loop_trial_logs_the_modes_of_its_timeline(tmp_path):
     away = np.all(np.abs(log.t_slow[:, None] - times[None, :]) > 1e-9, axis=1)
     assert np.array_equal(log.phase[away], expected[away]), (log.phase, expected)
     assert np.array_equal(load_trial_log(log.save(tmp_path / "trial.npz")).phase, log.phase)
+
+
+def test_an_open_loop_script_that_holds_no_time_passes_from_lift_to_place(tmp_path):
+    """grasp.hold_s = 0 (within its range) is a Hold phase of no time: the script passes over
+    it, so the timeline has no Hold and its log can be saved (one transition per time)."""
+    overrides = SHORT_SCRIPT[:3] + ["grasp.lift_s=0.6", "grasp.hold_s=0", "grasp.place_s=0.6"]
+    scenario = dataclasses.replace(LoadScenario(overrides=overrides),
+                                   controller=OpenLoopControllerConfig())
+    log = run_trial(scenario, max_time=1.7).log
+    transitions = log.meta["transitions"]
+    assert [(e["from"], e["to"]) for e in transitions] == [
+        ("Reach", "Load"), ("Load", "Lift"), ("Lift", "Place")]
+    assert transitions[-1]["t"] > transitions[-2]["t"]
+    assert np.array_equal(load_trial_log(log.save(tmp_path / "trial.npz")).phase, log.phase)
