@@ -668,8 +668,8 @@ def logged_scenario(info: lcmt_tegrasp_run_info | None):
 
 def run_info_damage(messages: list, scenario) -> list[str]:
     """What is wrong with a log's TEGRASP_RUN_INFO messages (in log order), in words: the
-    first one's object_name not its own scenario's object (`scenario`, logged_scenario of
-    the first; run_info_message writes object_name from it), and later ones that differ
+    first one's object_name or controller not its own scenario's (`scenario`, logged_scenario
+    of the first; run_info_message writes both from it), and later ones that differ
     from the first (a run publishes one: two logs joined, or corrupt bytes). The replay
     uses the first, and its scenario's object."""
     first, damage = messages[0], []
@@ -678,6 +678,12 @@ def run_info_damage(messages: list, scenario) -> list[str]:
             f"its {RUN_INFO_CHANNEL} names the object {shorten(repr(first.object_name))} "
             f"while its own scenario's object is {shorten(repr(scenario.object.name))} (a "
             "run logs its scenario's: corrupt bytes or an edited log); the scenario's is used")
+    if scenario is not None and scenario.controller.name != first.controller:
+        damage.append(
+            f"its {RUN_INFO_CHANNEL} names the controller {shorten(repr(first.controller))} "
+            f"while its own scenario's is {shorten(repr(scenario.controller.name))} (a run "
+            "logs its scenario's: corrupt bytes or an edited log); the scenario's settings "
+            "are used")
     fields = [field for field in first.__slots__ if field != "utime"]
     differing = [message for message in messages[1:]
                  if any(getattr(message, f) != getattr(first, f) for f in fields)]

@@ -203,7 +203,7 @@ def test_the_runs_events_folder_gone_is_refused_naming_it(tmp_path, capfd):
     assert code == 0, text
 
 
-# Rule: run_info_message writes object_name from its scenario's object, once per run; a log
+# Rule: run_info_message writes object_name and controller from its scenario, once per run; a log
 # whose TEGRASP_RUN_INFO contradicts itself, or that holds two that differ, is damaged.
 def test_run_info_object_differing_from_its_scenario_is_damage(tmp_path, capfd):
     path = _run_log(tmp_path / "run.lcmlog", [_run_info(object_name="thin_cylinder")])
@@ -214,6 +214,16 @@ def test_run_info_object_differing_from_its_scenario_is_damage(tmp_path, capfd):
     code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
     assert code == 3, text
     assert "object box" in text and "thin_cylinder" in text, text
+
+
+def test_run_info_controller_differing_from_its_scenario_is_damage(tmp_path, capfd):
+    path = _run_log(tmp_path / "run.lcmlog", [_run_info(controller="heuristic")])
+    damage = read_run_log(path).damage
+    assert len(damage) == 1, damage
+    assert "controller 'heuristic'" in damage[0] and "'memorized'" in damage[0], damage
+    save_memorized_events(tmp_path / "events", EVENTS.values())
+    code, text = _replay([str(path), "--events", str(tmp_path / "events")], capfd)
+    assert code == 3, text
 
 
 def test_two_run_infos_that_differ_are_damage(tmp_path, capfd):
