@@ -72,3 +72,19 @@ def test_a_code_that_names_no_rule_is_refused_in_one_line_naming_it(code, words)
     message = str(refused.value)
     assert "field 'code'" in message and words in message, message
     assert "\n" not in message and len(message) < 400, message
+
+
+@pytest.mark.parametrize("reason, words", [
+    ("x" * 1001, "got 1001 characters"),
+    ("held\n3 s", "got '\\n' at character 4"),
+    ("held\x1b[2J", "got '\\x1b' at character 4"),
+], ids=["too-long", "two-lines", "terminal-escape"])
+def test_a_reason_that_is_not_one_printable_line_is_refused_in_one_line(reason, words):
+    """A reason is printed on the timeline's one line per transition (results and logs read
+    back included): a pasted file or a terminal escape is refused, not printed."""
+    with pytest.raises(ValueError) as refused:
+        Transition.from_dict({**REACH_LOAD, "reason": reason})
+    message = str(refused.value)
+    assert "field 'reason'" in message and words in message, message
+    assert "\n" not in message and len(message) < 400, message
+    assert Transition.from_dict({**REACH_LOAD, "reason": "x" * 1000}).reason == "x" * 1000
