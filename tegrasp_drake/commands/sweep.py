@@ -50,7 +50,7 @@ from tegrasp_drake.sweep.spec import (
     validate_spec,
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
-from tegrasp_drake.rig.typed_yaml import ConfigError, set_option
+from tegrasp_drake.rig.typed_yaml import ConfigError, RefinedSettings, set_option
 from tegrasp_drake.rig.usage_parser import AppendSettings
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
@@ -160,8 +160,9 @@ def spec_from_arguments(args) -> SweepSpec:
         ("controllers", args.controllers and tuple(args.controllers)),
         ("attempts", args.attempts),
         ("base_seed", args.base_seed)) if value is not None}
-    if args.overrides:
-        overrides["scenario_overrides"] = spec.scenario_overrides + tuple(args.overrides)
+    if args.overrides:  # each list checked as written (the spec's, --set's): --set refines
+        overrides["scenario_overrides"] = RefinedSettings(spec.scenario_overrides
+                                                          + tuple(args.overrides))
     if "objects" in overrides:  # --objects chooses what runs: the spec's other objects do not
         overrides["user_objects"] = {name: config for name, config in spec.user_objects.items()
                                      if name in overrides["objects"]}
