@@ -20,7 +20,7 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.files import error_line, folder_problem
+from tegrasp_drake.rig.files import FOLDER_HELD, error_line, folder_problem
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
@@ -506,10 +506,9 @@ def run(args) -> int:
                 left, corrupt, in_use = check_sweep_folder(spec, trial_function, args.out)
                 print(plan_text(spec, left=left, corrupt=corrupt, out=args.out))
                 if in_use:
-                    print(f"tegrasp: warning: --out {args.out} is in use: another run (a "
-                          "running sweep) is writing there now; the plan counts the records "
-                          "finished so far, and a real run is refused until it ends",
-                          file=sys.stderr)
+                    print(f"tegrasp: warning: --out {args.out} is in use: {FOLDER_HELD}; the "
+                          "plan counts the records finished so far, and a real run is refused "
+                          "until it ends", file=sys.stderr)
                 return 0
             progress = not args.no_progress and progress_wanted(args)
             if args.benchmark:
