@@ -14,10 +14,10 @@ import tempfile
 from tegrasp_drake.events.event_file import INDEX_FILE
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, absent_folders,
-                                     claim_folder, file_problem, folder_problem, held_folder,
-                                     interruptions_deferred, made_folders_removed_if_empty,
-                                     own_staging_suffix,
+from tegrasp_drake.rig.files import (FOLDER_HELD, JSON_OBJECT_START, FolderHeldError,
+                                     absent_folders, claim_folder, file_problem,
+                                     folder_problem, held_folder, interruptions_deferred,
+                                     made_folders_removed_if_empty, own_staging_suffix,
                                      remove_stale_staging_files_of, write_atomically)
 from tegrasp_drake.rig.echo import shown
 
@@ -260,8 +260,8 @@ def claimed_run_folder(folder):
         try:
             stack.enter_context(held_folder(folder))
         except FolderHeldError:
-            raise RunFolderError(f"--out {folder}: another run is writing there now; wait "
-                                 "for it to end, or give another --out") from None
+            raise RunFolderError(f"--out {folder}: {FOLDER_HELD}; wait for it to end, or "
+                                 "give another --out") from None
         except OSError as e:
             raise RunFolderError(f"--out {folder}: cannot open it: {e.strerror or e}") from None
         yield

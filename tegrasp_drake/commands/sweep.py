@@ -20,7 +20,7 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.files import error_line, folder_problem
+from tegrasp_drake.rig.files import FOLDER_HELD, error_line, folder_problem
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
@@ -50,7 +50,7 @@ from tegrasp_drake.sweep.spec import (
     validate_spec,
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
-from tegrasp_drake.rig.typed_yaml import ConfigError, set_option
+from tegrasp_drake.rig.typed_yaml import ConfigError, RefinedSettings, set_option
 from tegrasp_drake.rig.usage_parser import AppendSettings
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
@@ -160,8 +160,9 @@ def spec_from_arguments(args) -> SweepSpec:
         ("controllers", args.controllers and tuple(args.controllers)),
         ("attempts", args.attempts),
         ("base_seed", args.base_seed)) if value is not None}
-    if args.overrides:
-        overrides["scenario_overrides"] = spec.scenario_overrides + tuple(args.overrides)
+    if args.overrides:  # each list checked as written (the spec's, --set's): --set refines
+        overrides["scenario_overrides"] = RefinedSettings(spec.scenario_overrides
+                                                          + tuple(args.overrides))
     if "objects" in overrides:  # --objects chooses what runs: the spec's other objects do not
         overrides["user_objects"] = {name: config for name, config in spec.user_objects.items()
                                      if name in overrides["objects"]}
@@ -505,10 +506,9 @@ def run(args) -> int:
                 left, corrupt, in_use = check_sweep_folder(spec, trial_function, args.out)
                 print(plan_text(spec, left=left, corrupt=corrupt, out=args.out))
                 if in_use:
-                    print(f"tegrasp: warning: --out {args.out} is in use: another run (a "
-                          "running sweep) is writing there now; the plan counts the records "
-                          "finished so far, and a real run is refused until it ends",
-                          file=sys.stderr)
+                    print(f"tegrasp: warning: --out {args.out} is in use: {FOLDER_HELD}; the "
+                          "plan counts the records finished so far, and a real run is refused "
+                          "until it ends", file=sys.stderr)
                 return 0
             progress = not args.no_progress and progress_wanted(args)
             if args.benchmark:

@@ -461,6 +461,11 @@ class FolderHeldError(OSError):
     """Another process holds the folder (held_folder): another run is writing there."""
 
 
+# What a held folder says of its holder: the lock (a flock on the folder) records no more
+# than that some run holds it (a trial, a hardware run, a sweep, ...), so no kind is named.
+FOLDER_HELD = "another run is writing there now"
+
+
 _SHARED_HOLDS = {}  # resolved folder -> how many nested shared holds this process has on it
 
 
@@ -487,8 +492,7 @@ def held_folder(folder, *, shared: bool = False):
         try:
             fcntl.flock(descriptor, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            raise FolderHeldError(errno.EWOULDBLOCK, "another run is writing there now",
-                                  str(folder)) from None
+            raise FolderHeldError(errno.EWOULDBLOCK, FOLDER_HELD, str(folder)) from None
         if shared:
             _SHARED_HOLDS[key] = 1
         try:

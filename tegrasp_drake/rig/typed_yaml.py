@@ -331,11 +331,21 @@ def _yaml_problem(error: yaml.YAMLError, line_offset: int = 0, column_offset: in
     return (where + problem + (f" ({context})" if context else "")).replace("\n", " ")
 
 
+class RefinedSettings(tuple):
+    """KEY=VALUE settings the package composed, a later one refining an earlier one (a
+    transfer world's preset, then its overrides, then the sweep's; a sweep trial's, checked
+    with its sweep): not one list the user wrote, so key_set_twice lets a key be set twice."""
+    __slots__ = ()
+
+
 def key_set_twice(settings) -> tuple[int, int] | None:
     """(i, k) of the first KEY=VALUE setting k of `settings` that sets the key setting i set,
     to another value, or None: a list of settings the user wrote (--set given twice, a spec's
-    scenario_overrides) may not set one key twice, as a YAML file may not repeat a key:
-    neither may silently win. A text that is no setting is skipped (its own check names it)."""
+    scenario_overrides, LoadScenario's overrides) may not set one key twice, as a YAML file
+    may not repeat a key: neither may silently win. A text that is no setting is skipped (its
+    own check names it); RefinedSettings are not checked."""
+    if isinstance(settings, RefinedSettings):
+        return None
     first = {}
     for k, setting in enumerate(settings):
         if not isinstance(setting, str) or assignment_problem(setting):
@@ -347,13 +357,14 @@ def key_set_twice(settings) -> tuple[int, int] | None:
     return None
 
 
-def refuse_a_key_set_twice(settings, source: str, path: str) -> None:
-    """ConfigError naming `source` and the field `path` when `settings`, a list of KEY=VALUE
-    settings a file holds, sets one key twice to two values (key_set_twice)."""
+def refuse_a_key_set_twice(settings, source: str, path: str, kind: str = "field") -> None:
+    """ConfigError naming `source` and the field (or argument: `kind`) `path` when
+    `settings`, a list of KEY=VALUE settings a file or a caller gives, sets one key twice to
+    two values (key_set_twice)."""
     twice = key_set_twice(settings)
     if twice:
         i, k = twice
-        raise ConfigError(f"{source}: field '{path}' sets {assignment_key(settings[k])} twice "
+        raise ConfigError(f"{source}: {kind} '{path}' sets {assignment_key(settings[k])} twice "
                           f"({shown(settings[i])} at [{i}], then {shown(settings[k])} at "
                           f"[{k}]); set it once")
 

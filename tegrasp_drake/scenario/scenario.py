@@ -35,8 +35,8 @@ from tegrasp_drake.rig.unset_fields import without_unset_fields
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, assignment_key,
                                           check_fields, keys_overlap, load_typed,
                                           loaded_with_overrides, parse_yaml,
-                                          read_yaml_file_cached, require, require_mapping,
-                                          set_words)
+                                          read_yaml_file_cached, refuse_a_key_set_twice,
+                                          require, require_mapping, set_words)
 from tegrasp_drake.simulation.capacitive_taxels import ad7147_frame_rate_hz, frame_rate_matches
 from tegrasp_drake.simulation.contact_meshing import ContactGeometryConfig
 from tegrasp_drake.simulation.body_force_pulse import DisturbanceConfig
@@ -530,7 +530,9 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     """Loads scenario `name` from `filename` (default: the built-in file) with overrides.
     controller: run it with this controller, keeping the controller settings it has and
     dropping the others' (on_ignored, if given, is called with their names); allow_long:
-    accept a grasp script longer than MAX_SCRIPT_S."""
+    accept a grasp script longer than MAX_SCRIPT_S. `overrides` may not set one key twice to
+    two values (refuse_a_key_set_twice), as --set may not."""
+    refuse_a_key_set_twice(overrides, "LoadScenario", "overrides", kind="argument")
     path = pathlib.Path(filename) if filename else paths.scenarios_file()
     document = read_yaml_file_cached(path, "the scenario file")
     if document is not None:  # an empty file: no scenario named `name`, below

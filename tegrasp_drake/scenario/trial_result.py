@@ -434,16 +434,28 @@ SCORE_ROUND_OFF = 1e-6
 
 
 def transition_scores_problem(transitions, controller: str | None) -> str | None:
-    """"'transitions[k].scores' ..." if a transition's scores lie outside what the detector of
-    `controller` (a registered name) gives, else None. The memorized detector's are Eq. 3
-    correlations (event_matching.SCORE_RANGE, [-1, 1]); the heuristic detector's are
-    channel/threshold ratios with no common bound (Transition.scores), so a controller with
-    another detector, or none named, has its scores checked only as finite (Transition's own)."""
+    """"'transitions[k].scores' ..." if a transition's scores are not what the detector of
+    `controller` (a registered name) gives, else None. A controller without a detector (the
+    open-loop script) gives none; the state machine logs its detector's scores on every
+    transition, whatever the trigger. The memorized detector's are Eq. 3 correlations
+    (event_matching.SCORE_RANGE, [-1, 1]); the heuristic detector's are channel/threshold
+    ratios with no common bound (Transition.scores), so a controller with another detector,
+    or none named, has its scores checked only as finite (Transition's own)."""
     from tegrasp_drake.control.controller_registry import (CONTROLLER_NAMES, EVENT_MATCHER,
                                                             controller_entry)
     from tegrasp_drake.rig.event_matching import SCORE_RANGE
-    if (controller not in CONTROLLER_NAMES
-            or controller_entry(controller).detector != EVENT_MATCHER):
+    if controller not in CONTROLLER_NAMES:
+        return None
+    detector = controller_entry(controller).detector
+    if detector is None:
+        for k, entry in enumerate(transitions):
+            if entry.scores is not None:
+                return (f"'transitions[{k}].scores' (at {number_text(entry.t)} s) is set, but "
+                        f"the {controller} controller has no event detector, so its "
+                        "transitions carry no scores; remove them or correct the result's "
+                        "'controller'")
+        return None
+    if detector != EVENT_MATCHER:
         return None
     low, high = SCORE_RANGE["low"], SCORE_RANGE["high"]
     for k, entry in enumerate(transitions):

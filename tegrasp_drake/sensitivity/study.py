@@ -67,9 +67,10 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
     ConfigError names the file and the field of anything that cannot run."""
     source = str(path)
     data = read_yaml_file(path, "the sensitivity spec")
+    # the example names a real parameter (the table's first), so that it cannot drift
     require_fields(data, source, "the sensitivity spec", "give at least one field (e.g. "
-                   "parameters: [object.friction]; `sweep: {}` for every parameter over the "
-                   "paper's sweep)")
+                   f"parameters: [{UNCERTAIN_PARAMETERS[0].key}]; `sweep: {{}}` for every "
+                   "parameter over the paper's sweep)")
     require_mapping(data, source, "the sensitivity spec",
                     "its fields (parameters, events, sweep)")
     unknown = sorted(set(map(str, data)) - set(_FIELDS))

@@ -24,7 +24,7 @@ from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.ranges import number_problem, real_number
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
-                                          keys_overlap, set_words)
+                                          keys_overlap, refuse_a_key_set_twice, set_words)
 
 # The paper's three objects (Fig. 8a); a spec can add its own (`user_objects`).
 BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
@@ -265,7 +265,8 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     """Raises ConfigError naming `source` and the field when `spec` cannot run (objects against
     `builtin_objects` and the spec's `user_objects`, controllers against `controllers`).
     `override_place(k)` names where scenario_overrides[k] was written (default: `source`'s
-    field; "--set" for one given on the command line), its assignment shown after it."""
+    field; "--set" for one given on the command line), its assignment shown after it; they
+    may not set one key twice to two values unless RefinedSettings (refuse_a_key_set_twice)."""
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
@@ -299,6 +300,7 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     if not isinstance(spec.randomisation.sensor_noise, bool):
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
+    refuse_a_key_set_twice(spec.scenario_overrides, source, "scenario_overrides")
     place = override_place or (lambda k: f"{source}: field 'scenario_overrides[{k}]'")
     _check_scenario_overrides(spec.scenario_overrides, spec.controllers, place, fail)
     _check_jittered_placements(spec, source, fail)

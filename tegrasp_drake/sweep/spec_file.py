@@ -5,9 +5,8 @@ built from the checked data, since Drake's `yaml_load_typed` cannot build them."
 from collections.abc import Collection
 from dataclasses import dataclass
 
-from tegrasp_drake.rig.typed_yaml import (ConfigError, check_fields, read_yaml_file,
-                                          refuse_a_key_set_twice, require_fields,
-                                          require_mapping)
+from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, check_fields,
+                                          read_yaml_file, require_fields, require_mapping)
 from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
                                       USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
                                       is_number, product_grid, user_object, validate_spec)
@@ -59,9 +58,8 @@ def sweep_spec_from_fields(fields, source: str, *,
     for name in ("objects", "controllers", "scenario_overrides"):
         if name in fields:
             fields[name] = tuple(fields[name])
-    if written:
-        refuse_a_key_set_twice(fields.get("scenario_overrides", ()), source,
-                               "scenario_overrides")
+    if not written and "scenario_overrides" in fields:  # validate_spec checks the written
+        fields["scenario_overrides"] = RefinedSettings(fields["scenario_overrides"])
     if "randomisation" in fields:
         fields["randomisation"] = RandomisationConfig(**fields["randomisation"])
     if "user_objects" in fields:

@@ -28,9 +28,10 @@ def scenario_from_trial_spec(trial: dict, *, nominal: bool = False):
     controller."""
     from tegrasp_drake.rig.objects import ObjectConfig
     from tegrasp_drake.scenario.scenario import LoadScenario, resolve_object, validate
+    from tegrasp_drake.rig.typed_yaml import RefinedSettings
     from tegrasp_drake.sweep.spec import user_object
     p = trial["perturbation"]
-    base = LoadScenario(overrides=tuple(trial.get("scenario_overrides", ())),
+    base = LoadScenario(overrides=RefinedSettings(trial.get("scenario_overrides", ())),
                         controller=trial["controller"])
     definition = trial.get("object_definition")
     if definition:

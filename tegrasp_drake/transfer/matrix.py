@@ -18,9 +18,10 @@ from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, settings
 from tegrasp_drake.rig.echo import shorten, shown
-from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, check_fields,
-                                          keys_overlap, optional_field, refuse_a_key_set_twice,
-                                          read_yaml_file, read_yaml_file_cached, require_mapping,
+from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, assignment_key,
+                                          check_fields, keys_overlap, optional_field,
+                                          refuse_a_key_set_twice, read_yaml_file,
+                                          read_yaml_file_cached, require_mapping,
                                           require_fields)
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
@@ -83,8 +84,9 @@ def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tu
 
 
 def running_sweep(spec: TransferSpec, running: str) -> SweepSpec:
-    """A cell's sweep in world `running`: the world's assignments before the sweep's overrides."""
-    return dataclasses.replace(spec.sweep, scenario_overrides=(
+    """A cell's sweep in world `running`: the world's assignments before the sweep's overrides
+    (RefinedSettings: the world's overrides refine its preset)."""
+    return dataclasses.replace(spec.sweep, scenario_overrides=RefinedSettings(
         world_assignments(spec.worlds[running]) + tuple(spec.sweep.scenario_overrides)))
 
 
@@ -300,10 +302,11 @@ def recording_assignments(spec: TransferSpec, world: str) -> tuple[str, ...]:
     """The `--set` assignments `world`'s events are recorded with, as its world.json keeps
     them: the world's, the sweep's, then `random_seed` when spec.events_seed is not
     DEFAULT_EVENTS_SEED (left out at the default, as folders recorded before the field
-    name their settings)."""
+    name their settings). RefinedSettings: the world's overrides refine its preset."""
     seed = (() if spec.events_seed == DEFAULT_EVENTS_SEED
             else (f"random_seed={spec.events_seed}",))
-    return world_assignments(spec.worlds[world]) + tuple(spec.sweep.scenario_overrides) + seed
+    return RefinedSettings(world_assignments(spec.worlds[world])
+                           + tuple(spec.sweep.scenario_overrides) + seed)
 
 
 def world_scenario(spec: TransferSpec, world: str, object_name: str):

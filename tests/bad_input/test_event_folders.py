@@ -72,6 +72,27 @@ def test_an_events_variable_naming_a_file_is_refused(tmp_path, monkeypatch, capf
     assert not (tmp_path / "x.png").exists()
 
 
+# Rule: the folder TEGRASP_EVENTS_DIR names holds events, or nothing yet; one of other files
+# (a mistyped path) is refused as `--events` there is, not passed over for the package's.
+def test_an_events_variable_naming_a_folder_of_other_files_is_refused(tmp_path, monkeypatch,
+                                                                     capfd):
+    from tegrasp_drake.commands.events_option import check_events_folder
+    folder = tmp_path / "etc"
+    folder.mkdir()
+    monkeypatch.setenv(paths.EVENTS_ENV, str(folder))
+    (folder / ".hidden").write_text("")
+    check_events_folder(None)  # empty but for a hidden file: no events recorded yet
+    (folder / "hosts").write_text("127.0.0.1 localhost\n")
+    code, text = run_cli(["plot", "events", "--out", str(tmp_path / "x.png")], capfd)
+    assert_one_line_error(code, text, f"TEGRASP_EVENTS_DIR='{folder}': {folder} holds no "
+                          "memorized events (no index.json) but other files (e.g. 'hosts'); "
+                          "point it at your events folder")
+    assert not (tmp_path / "x.png").exists()
+    (folder / "ensemble").mkdir()
+    (folder / "ensemble" / "index.json").write_text("[]")
+    check_events_folder(None)  # events in a subfolder: an events folder
+
+
 # --- 3. record-events checks its destination before simulating; readers name what is there ---
 
 @pytest.fixture

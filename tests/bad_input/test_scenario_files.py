@@ -199,6 +199,24 @@ def test_a_configuration_file_without_a_field_is_refused(tmp_path, text, loader,
              f"{what} is empty (no fields)")
 
 
+# Rule: the field an empty spec's refusal gives as an example is one the spec takes (the
+# sensitivity spec's names a real uncertain parameter, not a literal that drifted).
+@pytest.mark.parametrize("loader", ["tegrasp_drake.sensitivity.study:LoadSensitivitySpec",
+                                    "tegrasp_drake.sweep.spec_file:LoadSweepSpec"])
+def test_the_example_an_empty_spec_is_refused_with_loads(tmp_path, loader):
+    import importlib
+    import re
+    load = getattr(importlib.import_module(loader.split(":")[0]), loader.split(":")[1])
+    path = tmp_path / "spec.yaml"
+    path.write_text("")
+    with pytest.raises(T.ConfigError) as refused:
+        load(path)
+    example = re.search(r"e\.g\. (\w+: \[[^\]]*\])", str(refused.value))
+    assert example, refused.value
+    path.write_text(example.group(1) + "\n")
+    load(path)
+
+
 def test_an_empty_value_is_kept_where_the_field_declares_what_empty_means(tmp_path):
     path = tmp_path / "hardware.yaml"
     path.write_text('tactile: {port: /dev/ttyACM0, calibration_file: ""}\n')

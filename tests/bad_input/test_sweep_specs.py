@@ -292,4 +292,33 @@ def test_a_spec_list_repeating_one_setting_and_a_world_refining_its_preset_load(
     spec.write_text("worlds:\n  a: {scenario: memorizing_world, overrides: "
                     "[gripper.model=linkage]}\ncells: [[a, a]]\nsweep: {objects: [box], "
                     "controllers: [memorized], grid: [[0.0, 0.0]], attempts: 1}\n")
-    assert LoadTransferSpec(spec).worlds["a"].overrides == ("gripper.model=linkage",)
+    transfer = LoadTransferSpec(spec)
+    assert transfer.worlds["a"].overrides == ("gripper.model=linkage",)
+    # its cell's sweep (the preset's gripper.model, then the override) expands and runs so
+    from tegrasp_drake.sweep.spec import expand_trials
+    from tegrasp_drake.sweep.trial_function import scenario_from_trial_spec
+    from tegrasp_drake.transfer.matrix import running_sweep
+    (trial,) = expand_trials(running_sweep(transfer, "a"))
+    assert scenario_from_trial_spec(trial.to_dict()).gripper.model == "linkage"
+
+
+def test_a_list_setting_one_key_twice_is_refused_by_the_api_too(tmp_path):
+    """LoadScenario's overrides, and a SweepSpec built in code (validate_spec, run_sweep), in
+    the words a spec file's scenario_overrides are refused with."""
+    from tegrasp_drake.sweep.runner import run_sweep
+    from tegrasp_drake.sweep.trial_function import run_trial_from_spec
+    twice = "sets grasp.grip_force twice ('grasp.grip_force=30.0' at [0], then " \
+            "'grasp.grip_force=60.0' at [1]); set it once"
+    settings = ("grasp.grip_force=30.0", "grasp.grip_force=60.0")
+    with pytest.raises(ConfigError) as refused:
+        tegrasp_drake.LoadScenario(overrides=list(settings))
+    assert one_line_of(refused.value) == f"LoadScenario: argument 'overrides' {twice}"
+    spec = SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                     attempts=1, scenario_overrides=settings)
+    with pytest.raises(ConfigError) as refused:
+        validate_spec(spec, "api")
+    assert one_line_of(refused.value) == f"api: field 'scenario_overrides' {twice}"
+    with pytest.raises(ConfigError, match=r"field 'scenario_overrides' sets grasp.grip_force "):
+        run_sweep(spec, run_trial_from_spec, tmp_path / "out", progress=False)
+    assert not (tmp_path / "out").exists()
+    assert tegrasp_drake.LoadScenario(overrides=[settings[0]] * 2).grasp.grip_force == 30.0

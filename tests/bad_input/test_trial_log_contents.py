@@ -395,6 +395,19 @@ def test_correlation_scores_out_of_range_in_a_log_are_refused(tmp_path):
                   "meta 'transitions[0].scores' holds 7, outside -1 to 1")
 
 
+# Rule: a controller without a detector (the open-loop script) logs no scores on any
+# transition; a hand-edited record or log that gives its timer transitions some is corrupt.
+def test_scores_on_the_transitions_of_a_controller_without_a_detector_are_refused():
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    timeline = [logged_transition(1.0, "Reach", "Load", trigger="timer")]
+    fields = {"controller": "open_loop", "final_mode": "Load", "transitions": timeline}
+    assert TrialResult.from_dict(whole_result(**fields)).transitions[0].scores is None
+    scored = [logged_transition(1.0, "Reach", "Load", [5.0] * 4, trigger="timer")]
+    result_refused({**fields, "transitions": scored},
+                   "field 'transitions[0].scores' (at 1 s) is set, but the open_loop "
+                   "controller has no event detector, so its transitions carry no scores")
+
+
 def test_a_correlation_one_round_off_past_one_is_read():
     """The streaming matcher's running window energy can put a true 1 a few ulps past it."""
     from tegrasp_drake.scenario.trial_result import TrialResult

@@ -210,22 +210,22 @@ def test_dry_run_prints_the_plan_and_runs_nothing(tmp_path, capsys):
 
 def test_dry_run_prints_its_plan_for_a_folder_another_run_is_writing_and_says_so(tmp_path,
                                                                                    capsys):
-    """A dry run writes nothing, so a sweep running into --out does not stop it."""
-    from tegrasp_drake.rig.files import held_folder
+    """A dry run writes nothing, so a run writing into --out does not stop it; the lock says
+    no more than that some run holds it (here a `tegrasp trial`'s), so no kind is named."""
+    from tegrasp_drake.commands.run_folder import claimed_run_folder
     spec = tmp_path / "one.yaml"
     spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
                     "grid: [[0.0, 0.0]]\n")
     out = tmp_path / "out"
     out.mkdir()
-    with held_folder(out):  # another sweep, still running
+    with claimed_run_folder(out):  # a trial, still running
         code = cli.main(["sweep", "--spec", str(spec), "--dry-run", "--out", str(out), *FAKE])
     said = capsys.readouterr()
     assert code == 0, said
     assert "sweep plan (nothing run): 1 trial" in said.out
     assert said.err.strip().splitlines() == [
-        f"tegrasp: warning: --out {out} is in use: another run (a running sweep) is writing "
-        "there now; the plan counts the records finished so far, and a real run is refused "
-        "until it ends"]
+        f"tegrasp: warning: --out {out} is in use: another run is writing there now; the plan "
+        "counts the records finished so far, and a real run is refused until it ends"]
     assert list(out.iterdir()) == []
 
 
