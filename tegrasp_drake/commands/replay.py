@@ -35,6 +35,13 @@ def _fmt(value):
     return "-" if value is None else f"{value:8.3f}"
 
 
+def _logged(text: str) -> str:
+    """A text from the log as the replay prints it: escaped to one line and cut (echo)."""
+    from tegrasp_drake.rig.echo import shorten
+    from tegrasp_drake.rig.files import one_line
+    return shorten(one_line(text))
+
+
 def run(args) -> int:
     from tegrasp_drake.events import MemorizedEventError
     from tegrasp_drake.runs.hardware_log_reader import RunLogError
@@ -63,12 +70,13 @@ def run(args) -> int:
     print(f"{summary['log']}: controller {summary['controller']}, object "
           f"{events_of}, {summary['tactile_s']:.2f} s of tactile data "
           f"({summary['stale_ticks']} stale ticks)")
-    print("messages: " + ", ".join(f"{c} {n}" for c, n in sorted(log.message_counts.items())))
+    print("messages: " + ", ".join(f"{_logged(c)} {n}"
+                                   for c, n in sorted(log.message_counts.items())))
     for t in log.transitions:
         print(f"  [{t['t']:8.3f} s] {t['from']} -> {t['to']}  ({t['trigger']})")
     for f in summary["faults"]:
-        print(f"  [{f['t']:8.3f} s] FAULT {f['device']}: {f['kind']}: {f['description']} "
-              f"(since {f['since']:.3f} s)")
+        print(f"  [{f['t']:8.3f} s] FAULT {f['device']}: {f['kind']}: "
+              f"{_logged(f['description'])} (since {f['since']:.3f} s)")
     print("offline matcher (expected event from the logged transitions):")
     print("  transition      expected from  transition   match    scores at match (or max)")
     for r in replay.transitions:

@@ -6,7 +6,7 @@ import enum
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.ranges import bounded, check_ranges
-from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.echo import shorten, shown
 
 
 class Mode(enum.IntEnum):
@@ -33,7 +33,8 @@ class Mode(enum.IntEnum):
         for mode in Mode:
             if mode.label == label:
                 return mode
-        raise ValueError(f"unknown mode '{label}'; known: {', '.join(m.label for m in Mode)}")
+        raise ValueError(f"unknown mode {shown(label)}; known: "
+                         f"{', '.join(m.label for m in Mode)}")
 
 
 TERMINAL_MODES = (Mode.DONE, Mode.FAILED)
@@ -96,6 +97,16 @@ class Decision:
 # controllers wrote in 37,217 committed transitions is 129 characters; 1000 leaves room for
 # longer words and refuses a pasted file or a log's corrupt text.
 MAX_REASON_CHARS = 1000
+WORDS = f"one printable line of at most {MAX_REASON_CHARS} characters (words for a person)"
+
+
+def words_problem(text: str) -> str | None:
+    """Why `text` (a transition's reason, a device fault's description: words a timeline line
+    prints) is not WORDS, as "got ...", else None."""
+    unprintable = next((k for k, c in enumerate(text) if not c.isprintable()), None)
+    if unprintable is not None:
+        return f"got {text[unprintable]!r} at character {unprintable}"
+    return f"got {len(text)} characters" if len(text) > MAX_REASON_CHARS else None
 
 
 @public_dataclass
@@ -146,14 +157,11 @@ class Transition:
         records a change of mode (no rule's `then` keeps its mode, and the open-loop script
         logs a phase only when its mode changes)."""
         check_ranges(self, type(self).__name__)
-        unprintable = [k for k, c in enumerate(self.reason) if not c.isprintable()]
-        if len(self.reason) > MAX_REASON_CHARS or unprintable:
+        problem = words_problem(self.reason)
+        if problem:
             from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
-            got = (f"{repr(self.reason[unprintable[0]])} at character {unprintable[0]}"
-                   if unprintable else f"{len(self.reason)} characters")
-            raise ConfigError(f"{type(self).__name__}: field 'reason' must be one printable "
-                              f"line of at most {MAX_REASON_CHARS} characters (words for a "
-                              f"person), got {got}")
+            raise ConfigError(f"{type(self).__name__}: field 'reason' must be {WORDS}, "
+                              f"{problem}")
         if self.code is not None:
             try:
                 _check_code(self.code)
@@ -203,10 +211,20 @@ class Transition:
             _check_code(entry["code"])  # a ValueError, as for the rest of the JSON form
         return Transition(t=entry["t"], from_mode=Mode.from_label(entry["from"]),
                           to_mode=Mode.from_label(entry["to"]),
-                          trigger=Trigger(entry["trigger"]), reason=entry["reason"], **optional)
+                          trigger=_trigger(entry["trigger"]), reason=entry["reason"],
+                          **optional)
 
 
 _REQUIRED_KEYS = ("t", "from", "to", "trigger", "reason")
+
+
+def _trigger(value) -> Trigger:
+    """The Trigger named `value`; ValueError echoing it cut (a log's or a file's text)."""
+    try:
+        return Trigger(value)
+    except ValueError:
+        raise ValueError(f"{shown(value)} is not a valid Trigger (known: "
+                         f"{', '.join(Trigger)})") from None
 _OPTIONAL_FIELDS = ("scores", "offset_m", "approach_offset_m", "grip_force_n", "direction",
                     "delta_sa_n", "move_s", "code")
 

@@ -9,6 +9,11 @@ import datetime
 SILENT = "silent"            # the device stopped talking (watchdog)
 DEVICE_FAULT = "device"      # the device reported a fault code (e.g. Robotiq gFLT)
 DRIVER_ERROR = "driver"      # the driver could not bring the device up (e.g. activation)
+KINDS = (SILENT, DEVICE_FAULT, DRIVER_ERROR)
+# The devices a fault names: the watchdog's (watchdog.DEFAULT_TIMEOUTS) and the gripper
+# driver's (RobotiqDriver's `device`).
+DEVICES = ("arm", "gripper", "tactile")
+NO_CODE = -1  # a fault's `code` when the device gave none (SILENT, DRIVER_ERROR)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -18,7 +23,7 @@ class DeviceFault:
     device: str
     kind: str
     description: str
-    code: int = -1
+    code: int = NO_CODE
     since_sim_time: float = 0.0
     since_wall_time: float = 0.0
 

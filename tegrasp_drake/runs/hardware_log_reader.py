@@ -12,27 +12,30 @@ import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
-from tegrasp_drake.control.grasp_modes import Mode, Transition
+from tegrasp_drake.control.grasp_modes import WORDS, Mode, Transition, words_problem
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import check_ranges, field_range
-from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError, JsonValueError,
                                      file_problem, load_json, one_line, read_bounded)
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
+from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DEVICES, KINDS, NO_CODE
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
     TRANSITION_CHANNEL, tactile_arrays)
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     COUNT_MAX, MAX_TAXEL_GAIN_N_PER_COUNT, PIEZO_INPUT_V, PadCalibration)
 from tegrasp_drake.hardware.myrio.tactile_frame import RESTART_RUN
-from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL,
-                                                check_jaco_status_message)
+from tegrasp_drake.hardware.jaco.jaco_lcm import (
+    JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL, check_jaco_command_message,
+    check_jaco_status_message)
 from tegrasp_drake.hardware.message_boundary import RejectedMessage
 from tegrasp_drake.events.extraction import TactileTrial
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, parse_yaml
+from tegrasp_drake.robotiq.units import BYTE_MAX
 from tegrasp_drake.scenario.scenario import scenario_from_yaml
 from tegrasp_drake.scenario.trial_log_file import sensor_bounds, widest_configs
 from tegrasp_drake.scenario.trial_result import transition_trigger_problem
@@ -391,41 +394,123 @@ def _live_refusals(messages: list, check) -> tuple[list, dict]:
     return kept, refused
 
 
+def _plausible(messages: list, problem_of) -> tuple[list, dict]:
+    """The (log time, message) pairs for which `problem_of`(log time [us], message) is None,
+    and the others' counts by what is wrong, each with the first one's words: {what: [count,
+    detail]} from the (what, detail) problem_of returns."""
+    kept, wrong = [], {}
+    for wall, message in messages:
+        found = problem_of(wall, message)
+        if found:
+            wrong.setdefault(found[0], [0, found[1]])[0] += 1
+        else:
+            kept.append((wall, message))
+    return kept, wrong
+
+
+def _skipped_damage(channel: str, wrong: dict) -> list[str]:
+    """The damage of the messages on `channel` that _plausible (or _chained_transitions) left
+    out, in words: one line per thing wrong, with its count and the first one's words."""
+    return [f"{n} message(s) on {channel} {problem} (the first: {detail}; another publisher "
+            "on the bus, or corrupt bytes); skipped" for problem, (n, detail) in wrong.items()]
+
+
+def _run_time_problem(t: float, wall: int, span, logged_at) -> tuple[str, str] | None:
+    """(what is wrong, words to add to the message's) when a message the run publishes as it
+    happens (a transition, a fault) carries a Context time `t` [s] outside the run's tactile
+    stream's `span` [s] (None: not checked), or more than MAX_TIME_OUTLIER_S from the run's
+    time when it was logged (`logged_at`(receive time `wall` [us]) -> that Context time [s],
+    from the tactile messages received around it; None: not checked), else None. The receive
+    time is lcm-logger's, which no publisher sets, so a message on the bus from elsewhere must
+    carry a time within a second of the run's to be taken."""
+    if span is not None and not span[0] <= t <= span[1]:
+        return (f"lie outside the run's tactile stream's time span, {number_text(span[0])} to "
+                f"{number_text(span[1])} s", "")
+    if logged_at is not None and abs(t - logged_at(wall)) > MAX_TIME_OUTLIER_S:
+        return (f"carry a time more than {number_text(MAX_TIME_OUTLIER_S)} s from the run's "
+                "when they were logged", f", logged at {number_text(logged_at(wall))} s")
+    return None
+
+
 def _plausible_transitions(messages: list, span: tuple[float, float] | None,
                            logged_at=None) -> tuple[list, dict]:
     """The (log time, lcmt_tegrasp_transition) pairs that can be the run's, and the others'
-    counts by what is wrong, each with the first one's words: no transition a controller
-    makes (Transition's reader refuses it: a mode or trigger no controller has), a time
-    outside the run's tactile stream's `span` [s] (the controller's Context time, which both
-    carry; None: not checked), or more than MAX_TIME_OUTLIER_S from the run's time when it
-    was logged (`logged_at`(receive time [us]) -> that Context time [s], from the tactile
-    messages received around it; None: not checked). The receive time is lcm-logger's, which
-    no publisher sets, so a message on the bus from elsewhere must carry a time within a
-    second of the run's to be taken. Checked before the time order, which a forged time
-    would otherwise set."""
-    kept, wrong = [], {}
-    for wall, message in messages:
+    counts by what is wrong (_plausible): no transition a controller makes (Transition's
+    reader refuses it: a mode or trigger no controller has), or a time the run's is not
+    (_run_time_problem). Checked before the time order, which a forged time would otherwise
+    set."""
+    def problem_of(wall, message):
         t = message.utime * 1e-6
         try:
             Transition.from_dict({"t": t, "from": message.from_mode, "to": message.to_mode,
                                   "trigger": message.trigger, "reason": message.reason})
         except ValueError as error:
-            problem, detail = "are no transition a controller makes", str(error)
-        else:
-            problem, detail = None, (f"{shorten(message.from_mode)} -> "
-                                     f"{shorten(message.to_mode)} at {number_text(t)} s")
-            if span is not None and not span[0] <= t <= span[1]:
-                problem = (f"lie outside the run's tactile stream's time span, "
-                           f"{number_text(span[0])} to {number_text(span[1])} s")
-            elif logged_at is not None and abs(t - logged_at(wall)) > MAX_TIME_OUTLIER_S:
-                problem = (f"carry a time more than {number_text(MAX_TIME_OUTLIER_S)} s from "
-                           "the run's when they were logged")
-                detail += f", logged at {number_text(logged_at(wall))} s"
+            return "are no transition a controller makes", str(error)
+        wrong = _run_time_problem(t, wall, span, logged_at)
+        return wrong and (wrong[0], f"{message.from_mode} -> {message.to_mode} at "
+                                    f"{number_text(t)} s{wrong[1]}")
+    return _plausible(messages, problem_of)
+
+
+def _fault_problem(message: lcmt_tegrasp_fault) -> str | None:
+    """Why `message` is no fault the station reports (hardware_run.fault_message of a
+    DeviceFault: a device and kind of device_fault's, a gFLT register byte as a device
+    fault's code and none for the others, a description of WORDS, times from the run's start
+    and "since" not after the report), in words, else None."""
+    if message.device not in DEVICES:
+        return f"device {shown(message.device)} is none of {', '.join(DEVICES)}"
+    if message.kind not in KINDS:
+        return f"kind {shown(message.kind)} is none of {', '.join(KINDS)}"
+    if message.kind == DEVICE_FAULT and not 0 < message.code <= BYTE_MAX:
+        return (f"a {DEVICE_FAULT} fault's code {message.code} is no fault code (a gFLT "
+                f"register byte, 1 to {number_text(BYTE_MAX)})")
+    if message.kind != DEVICE_FAULT and message.code != NO_CODE:
+        return f"a {message.kind} fault's code is {NO_CODE} (none), got {message.code}"
+    problem = _not_utf8_problem(message.description) or words_problem(message.description)
+    if problem:
+        return f"its description is not {WORDS}: {problem}"
+    if message.utime < 0:
+        return f"utime {message.utime} us is before the run's start (Context time 0)"
+    if message.since_wall_utime < 0:
+        return f"since_wall_utime {message.since_wall_utime} us is before the epoch"
+    if not 0 <= message.since_utime <= message.utime:
+        return (f"since {number_text(message.since_utime * 1e-6)} s is not between the run's "
+                f"start and the report at {number_text(message.utime * 1e-6)} s")
+    return None
+
+
+def _plausible_faults(messages: list, span, logged_at) -> tuple[list, dict]:
+    """The (log time, lcmt_tegrasp_fault) pairs that can be the run's, and the others' counts
+    by what is wrong (_plausible): no fault the station reports (_fault_problem), or a time
+    the run's is not (_run_time_problem: the run publishes a fault when it sees it, as it does
+    a transition)."""
+    def problem_of(wall, message):
+        problem = _fault_problem(message)
         if problem:
-            wrong.setdefault(problem, [0, detail])[0] += 1
-        else:
-            kept.append((wall, message))
-    return kept, wrong
+            return "are no fault the station reports", problem
+        t = message.utime * 1e-6
+        wrong = _run_time_problem(t, wall, span, logged_at)
+        return wrong and (wrong[0], f"{message.device} {message.kind} at {number_text(t)} s"
+                                    f"{wrong[1]}")
+    return _plausible(messages, problem_of)
+
+
+def _gripper_problem(wall: int, message: lcmt_tegrasp_gripper) -> tuple[str, str] | None:
+    """(what is wrong, the message's words) when `message` cannot be the run's
+    (device_log_messages.GripperStatusSender's): a register outside the 2F-85's bytes, a
+    status arrival time (host time.monotonic() [s], 0 before the first) not finite or
+    negative, a negative utime (Context time); else None."""
+    registers = [*message.command, *message.status]
+    if not all(0 <= register <= BYTE_MAX for register in registers):
+        return (f"hold registers outside the 2F-85's bytes, 0 to {number_text(BYTE_MAX)}",
+                f"command {number_text(list(message.command))}, status "
+                f"{number_text(list(message.status))}")
+    if not (np.isfinite(message.status_arrival_s) and message.status_arrival_s >= 0):
+        return ("hold a status arrival time (the host's time.monotonic()) that is not finite or "
+                "negative", f"status_arrival_s {number_text(message.status_arrival_s)}")
+    if message.utime < 0:
+        return "carry a negative time (utime)", f"utime {message.utime} us"
+    return None
 
 
 def _chained_transitions(messages: list) -> tuple[list, dict]:
@@ -750,15 +835,18 @@ def read_run_log(path) -> RunLog:
             decoded[channel].append((timestamp, message))
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
-    decoded[JACO_STATUS_CHANNEL], refused = _live_refusals(decoded[JACO_STATUS_CHANNEL],
-                                                           check_jaco_status_message)
-    if refused:
-        damage.append(
-            f"{sum(refused.values())} message(s) on {JACO_STATUS_CHANNEL} are statuses the "
-            "live run refuses ("
-            + ", ".join(f"{reason} {n}" for reason, n in sorted(refused.items()))
-            + "; another publisher on the bus, or corrupt bytes); skipped")
-    for channel in (FAULT_CHANNEL, GRIPPER_CHANNEL, JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL,
+    for channel, check, what in ((JACO_STATUS_CHANNEL, check_jaco_status_message, "statuses"),
+                                 (JACO_COMMAND_CHANNEL, check_jaco_command_message,
+                                  "commands")):
+        decoded[channel], refused = _live_refusals(decoded[channel], check)
+        if refused:
+            damage.append(
+                f"{sum(refused.values())} message(s) on {channel} are {what} the live run "
+                "refuses (" + ", ".join(f"{reason} {n}" for reason, n in sorted(refused.items()))
+                + "; another publisher on the bus, or corrupt bytes); skipped")
+    decoded[GRIPPER_CHANNEL], wrong = _plausible(decoded[GRIPPER_CHANNEL], _gripper_problem)
+    damage += _skipped_damage(GRIPPER_CHANNEL, wrong)
+    for channel in (GRIPPER_CHANNEL, JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL,
                     RUN_INFO_CHANNEL):
         damage += _time_order_damage(decoded, channel)
     info = decoded[RUN_INFO_CHANNEL]
@@ -813,13 +901,15 @@ def read_run_log(path) -> RunLog:
     received = np.maximum.accumulate(tactile["wall_us"]) if span is not None else None
     logged_at = (None if span is None else
                  lambda wall: float(np.interp(wall, received, tactile["t"])))
+    decoded[FAULT_CHANNEL], faults_wrong = _plausible_faults(decoded[FAULT_CHANNEL], span,
+                                                             logged_at)
+    damage += _time_order_damage(decoded, FAULT_CHANNEL)
+    damage += _skipped_damage(FAULT_CHANNEL, dict(sorted(faults_wrong.items())))
     decoded[TRANSITION_CHANNEL], wrong = _plausible_transitions(decoded[TRANSITION_CHANNEL],
                                                                 span, logged_at)
     damage += _time_order_damage(decoded, TRANSITION_CHANNEL)
     decoded[TRANSITION_CHANNEL], unchained = _chained_transitions(decoded[TRANSITION_CHANNEL])
-    damage += [f"{n} message(s) on {TRANSITION_CHANNEL} {problem} (the first: {detail}; "
-               "another publisher on the bus, or corrupt bytes); skipped"
-               for problem, (n, detail) in sorted(wrong.items()) + list(unchained.items())]
+    damage += _skipped_damage(TRANSITION_CHANNEL, {**dict(sorted(wrong.items())), **unchained})
     transitions = [{"t": m.utime * 1e-6, "from": m.from_mode, "to": m.to_mode,
                     "trigger": m.trigger, "reason": m.reason}
                    for _, m in decoded[TRANSITION_CHANNEL]]

@@ -143,8 +143,15 @@ def jaco_status_boundary(source: str = f"arm: {JACO_STATUS_CHANNEL}") -> Message
 
 def check_jaco_command(data: bytes) -> lcmt_jaco_command:
     """A KINOVA_JACO_COMMAND message decoded and checked (6 joints, finite, no joint faster
-    than JACO_MAX_JOINT_SPEED); else RejectedMessage naming the defect."""
-    message = decode_lcm(lcmt_jaco_command, data)
+    than JACO_MAX_JOINT_SPEED: check_jaco_command_message); else RejectedMessage naming the
+    defect."""
+    return check_jaco_command_message(decode_lcm(lcmt_jaco_command, data))
+
+
+def check_jaco_command_message(message: lcmt_jaco_command) -> lcmt_jaco_command:
+    """`message`, a decoded command, checked as the arm's boundary checks each one it receives
+    (check_jaco_command); else RejectedMessage. A run log's reader checks the commands it has
+    decoded with it."""
     _check_joints(message, ("joint_position", "joint_velocity"))
     fast = [k for k, v in enumerate(message.joint_velocity) if abs(v) > JACO_MAX_JOINT_SPEED]
     if fast:
