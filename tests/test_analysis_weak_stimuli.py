@@ -22,7 +22,7 @@ from tegrasp_drake.events.missed_waits import (
     classify_missed_wait, event_waits, timeout_reason_prefix)
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS
 from tegrasp_drake.events.synthetic import (SyntheticGraspConfig, SyntheticSensorsConfig,
-                                             synthetic_grasp)
+                                             synthetic_grasp, synthetic_sa)
 from tegrasp_drake.events.ra_noise_floor import rule_sigmas
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_description
@@ -217,13 +217,18 @@ SWEEP_GRASP = SyntheticGraspConfig(duration_s=6.0, contact_s=2.5, place_s=4.8,
                                                                   sa_noise_n=0.005, seed=5))
 
 
-def synthetic_trial_log(trial) -> TrialLog:
-    """A TrialLog of `trial`: SA on one taxel of each pad, RA as the channels' film."""
+def synthetic_trial_log(config: SyntheticGraspConfig) -> TrialLog:
+    """A TrialLog of the synthetic grasp `config`: SA on one taxel of each pad (its true
+    taxels the noise-free forces, never negative), RA as the channels' film."""
     def zeros(times, width):
         return np.zeros((len(times), width))
+    trial = synthetic_grasp(config)
     t_slow = np.array([0.0, trial.t_ra[-1]])
     taxels = zeros(trial.t_sa, 2 * TAXELS_PER_PAD)
     taxels[:, 0], taxels[:, TAXELS_PER_PAD] = trial.sa[:, 0], trial.sa[:, 1]
+    true_taxels = zeros(trial.t_sa, 2 * TAXELS_PER_PAD)
+    true_taxels[:, 0], true_taxels[:, TAXELS_PER_PAD] = (
+        synthetic_sa(trial.t_sa, config, delay) for delay in (0.0, config.sensors.right_delay_s))
     # held as the loggers record it: from the first taxel sample at or after each RA time
     held = np.searchsorted(trial.t_sa, trial.t_ra - 1e-9, side="left")
     sa_at_ra = trial.sa[np.minimum(held, len(trial.t_sa) - 1)]
@@ -233,7 +238,7 @@ def synthetic_trial_log(trial) -> TrialLog:
     object_state[:, 0] = 1.0  # the identity orientation, a unit quaternion
     arm_q = zeros(t_slow, 6)
     arm_q[:, 1:3] = [3.0, 1.0]  # joints 2 and 3 within the JACO2's limits
-    return TrialLog(t_sa=trial.t_sa, taxels=taxels, true_taxels=taxels, t_ra=trial.t_ra,
+    return TrialLog(t_sa=trial.t_sa, taxels=taxels, true_taxels=true_taxels, t_ra=trial.t_ra,
                     channels=np.hstack([sa_at_ra, trial.ra]),
                     pad_acceleration=pad_acceleration, t_slow=t_slow,
                     arm_q=arm_q, arm_q_desired=arm_q,
@@ -274,7 +279,7 @@ def test_the_command_classes_a_sweeps_missed_waits_from_its_records_and_logs(tmp
         write_record(tmp_path / "results", make_record(trial, result=whole_result(
             trial, transitions=transitions, hold_success=True, unload_success=False,
             final_mode=transitions[-1]["to"], corrective_actions=actions)))
-        synthetic_trial_log(synthetic_grasp(config)).save(
+        synthetic_trial_log(config).save(
             tmp_path / "logs" / trial_log_name(trial))
     out = tmp_path / "weak_stimuli.md"
     assert load_command().main([str(tmp_path / "results"), str(tmp_path / "logs"), "--events",

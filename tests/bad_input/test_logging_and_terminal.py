@@ -266,6 +266,7 @@ def test_a_verbose_plot_logs_what_it_read_and_wrote(tmp_path, capfd, caplog):
 # device it raised and where, and that they stopped.
 @pytest.mark.slow
 def test_verbose_hardware_and_emulate_log_their_steps_on_stderr(tmp_path, ideal_grasp_log):
+    from tegrasp_drake.commands.hardware import failed_run_path
     from tegrasp_drake.commands.run_folder import result_path_beside_log
     from tegrasp_drake.emulators.emulator_process import EmulatedDevices, EmulatorProcess
     from tegrasp_drake.hardware.config import hardware_config_to_yaml
@@ -287,17 +288,24 @@ def test_verbose_hardware_and_emulate_log_their_steps_on_stderr(tmp_path, ideal_
              "--log", str(log), "--overwrite"],
             capture_output=True, text=True, timeout=300)
     assert done.returncode in (0, 2), done.stderr
-    for words in (["devices checked", url, devices.config.gripper.port],
+    # A loaded host can fail the run (a device's messages late): then the earlier run is kept
+    # and this one's pair is written beside it, as `tegrasp hardware --overwrite` documents.
+    failed = done.returncode == 2
+    failed_log = failed_run_path(log)
+    written = ([["the run failed", f"this run's are {failed_log} and "
+                 f"{result_path_beside_log(failed_log)}"]] if failed else
+               [[f"wrote the log {log} and the result {result}"],
+                [f"replaced the earlier run's log {log} and result {result}"]])
+    for words in [["devices checked", url, devices.config.gripper.port],
                   [f"gripper on {devices.config.gripper.port} (Modbus slave"],  # DEBUG
-                  ["devices ready"], ["the run started"], ["the run ended"],
-                  [f"wrote the log {log} and the result {result}"],
-                  [f"replaced the earlier run's log {log} and result {result}"]):
+                  ["devices ready"], ["the run started"], ["the run ended"]] + written:
         assert any(all(word in line for word in words)
                    for line in done.stderr.splitlines()), (words, done.stderr)
     assert "replaced" not in done.stdout and "the run started" not in done.stdout
-    assert log.read_bytes() != EARLIER_LOG
+    assert (log.read_bytes() == EARLIER_LOG) == failed
     replayed = subprocess.run([sys.executable, "-m", "tegrasp_drake", "replay", "-vv",
-                               str(log)], capture_output=True, text=True, timeout=300)
+                               str(failed_log if failed else log)],
+                              capture_output=True, text=True, timeout=300)
     assert replayed.returncode == 0, replayed.stderr
     assert "the matcher's settings" in replayed.stderr, replayed.stderr  # DEBUG
     emulator_url = f"udpm://239.255.76.67:{7700 + (os.getpid() * 7) % 100}?ttl=0"
