@@ -29,8 +29,8 @@ from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance,
                                           require_own_tag, load_typed, loaded_with_overrides,
-                                          parse_yaml, read_yaml_text, require_fields,
-                                          require_mapping, top_level_tag)
+                                          parse_yaml, read_yaml_text, refuse_a_key_set_twice,
+                                          require_fields, require_mapping, top_level_tag)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.rig.echo import shorten, shown
 
@@ -496,7 +496,11 @@ _SIMULATED_STATION_TAG = "!SimulatedStationConfig"
 @public_api
 def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
-    """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
+    """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field.
+    `overrides` may not set one key twice to two values (refuse_a_key_set_twice), as
+    --config-set and a YAML mapping may not: neither would silently win."""
+    refuse_a_key_set_twice(overrides, f"LoadHardwareConfig({shown(str(filename))})",
+                           "overrides", kind="argument")
     text = read_yaml_text(filename, "the hardware config")
     data = parse_yaml(text, str(filename)) if text else None
     if text and top_level_tag(text) == _SIMULATED_STATION_TAG:
