@@ -146,7 +146,7 @@ def test_an_lcm_url_lcm_takes_is_accepted():
 # Rule: each URL option has a declared range (LCM_URL_OPTIONS): a value outside it, or not
 # written as a decimal integer LCM reads as written (strtol reads `010` as octal 8, `1e6` as
 # 1, a negative ttl wrapped to 255), is refused naming the option and its range, as is a
-# port with a leading zero (`07667`: port 3991).
+# port with a leading zero (`07667`: port 4023).
 @pytest.mark.parametrize("query, words", [
     ("recv_buf_size=0", "has recv_buf_size=0; recv_buf_size is a socket receive buffer's "
                         "size in bytes, an integer from 1 to 2147483647"),
