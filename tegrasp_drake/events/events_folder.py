@@ -96,22 +96,40 @@ def save_memorized_events(events_dir: Annotated[PathLike, OUTPUT_FOLDER],
     while another process saves or records there is refused (EventsFolderHeldError, an
     EventsDestinationError)."""
     events_dir = pathlib.Path(events_dir)
-    events = _sorted_events(events)
+    events = list(events)
     if not events:
         raise ValueError("save_memorized_events: no events given; there is nothing to save "
                          "(record some with record_events)")
+    _refuse_a_repeated_event(events)
+    events = _sorted_events(events)
     keys = [(e.object_name, e.transition) for e in events]
-    if len(set(keys)) != len(keys):
-        raise ValueError("two events share an object and a transition")
     objects = sorted({e.object_name for e in events})
     for object_name in objects:
         missing = [t for t in required if (object_name, t) not in keys]
         if missing:
-            raise ValueError(f"object '{object_name}' lacks transitions {missing}")
+            raise ValueError(f"save_memorized_events: object '{shorten(object_name)}' lacks "
+                             f"the transitions {', '.join(map(repr, missing))} (each object "
+                             f"needs {', '.join(required)}); nothing was saved")
     _refuse_unreadable(events_dir, events, objects)
     check_events_destination(events_dir, objects, keep_other_objects=keep_other_objects)
     with held_events_folder(events_dir):
         return _save_held(events_dir, events, objects, keep_other_objects)
+
+
+def _refuse_a_repeated_event(events: list[MemorizedEvent]) -> None:
+    """ValueError naming the object, the transition and the two positions in `events` of the
+    first two events of one object and transition: one file holds each, so one would be
+    written over the other (or one dropped) without a word."""
+    first = {}
+    for position, event in enumerate(events):
+        key = (event.object_name, event.transition)
+        if key in first:
+            raise ValueError(
+                f"save_memorized_events: events[{first[key]}] and events[{position}] are both "
+                f"object '{shorten(key[0])}', transition '{shorten(key[1])}' (one file, "
+                f"{shorten(event.relative_path())}, holds it); give one event per object and "
+                "transition; nothing was saved")
+        first[key] = position
 
 
 class UnreadableEventsError(ValueError):

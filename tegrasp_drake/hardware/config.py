@@ -29,8 +29,8 @@ from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance,
                                           require_own_tag, load_typed, loaded_with_overrides,
-                                          parse_yaml, read_yaml_text, require_fields,
-                                          require_mapping, top_level_tag)
+                                          parse_yaml, read_yaml_text, refuse_a_key_set_twice,
+                                          require_fields, require_mapping, top_level_tag)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.rig.echo import shorten, shown
 
@@ -127,10 +127,25 @@ SHARED_LCM_PROVIDERS = ("udpm", "tcpq")
 IN_PROCESS_LCM_PROVIDERS = ("memq",)
 
 
-# The options each provider takes in a URL's query (LCM's lcm_udpm.c, lcm_tcpq.c and
-# lcm_memq.c): LCM warns of another on stderr and runs without it.
-LCM_URL_OPTIONS = {"udpm": ("ttl", "recv_buf_size"), "tcpq": (), "memq": ()}
-MULTICAST_TTL_RANGE = (0, 255)  # IP_MULTICAST_TTL, ip(7)
+class LcmUrlOption(typing.NamedTuple):
+    """An option a provider takes in a URL's query: a decimal integer from `low` to `high`,
+    `what` it sets in words ("a multicast TTL")."""
+    low: int
+    high: int
+    what: str
+
+
+# The options each provider takes in a URL's query and the integers each allows (LCM's
+# lcm_udpm.c, lcm_tcpq.c and lcm_memq.c). LCM warns of another option on stderr and runs
+# without it, and reads a value with C's strtol(base 0): `010` as octal 8, `1e6` as 1, and a
+# number past its C type wrapped; so the text is checked here. ttl: IP_MULTICAST_TTL, ip(7),
+# an 8-bit field; recv_buf_size: SO_RCVBUF, socket(7), a C int (LCM reads 0 as the kernel's
+# default: leave the option out for it).
+LCM_URL_OPTIONS = {
+    "udpm": {"ttl": LcmUrlOption(0, 255, "a multicast TTL"),
+             "recv_buf_size": LcmUrlOption(1, 2**31 - 1,
+                                           "a socket receive buffer's size in bytes")},
+    "tcpq": {}, "memq": {}}
 
 
 def lcm_provider(url: str) -> str:
@@ -147,9 +162,11 @@ LCM_URL_EXAMPLE = "udpm://239.255.76.67:7667?ttl=0"
 
 def lcm_url_form_problem(url: str) -> str | None:
     """Why `url` does not parse as an LCM URL, PROVIDER://ADDRESS[?OPTION=VALUE&...] (for
-    udpm://, ADDRESS an IPv4 GROUP[:PORT] and ttl a number), in words that follow
+    udpm://, ADDRESS an IPv4 GROUP[:PORT] and the value of each option of LCM_URL_OPTIONS a
+    decimal integer LCM reads as written: _integer_text_problem), in words that follow
     "'URL': ", or None: a command line's --lcm-url that does not parse (exit 2). What a URL
-    that parses names (a provider, a port or ttl out of range, an option) is lcm_url_problem's."""
+    that parses names (a provider, a port or option value out of range, an option) is
+    lcm_url_problem's."""
     provider = lcm_provider(url)
     if not provider:
         return f"it names no provider (PROVIDER://ADDRESS); give e.g. {LCM_URL_EXAMPLE}"
@@ -157,19 +174,42 @@ def lcm_url_form_problem(url: str) -> str | None:
         return None
     address, _, query = url.split("://", 1)[1].partition("?")
     form = f"give udpm://GROUP:PORT, e.g. {LCM_URL_EXAMPLE}"
+    options = LCM_URL_OPTIONS[provider]
     for option in query.split("&") if query else ():
         key, _, value = option.partition("=")
-        if key == "ttl" and not _decimal(value):
-            return f"ttl {shown(value)} is not a number; {form}"
+        if key in options:
+            problem = _integer_text_problem(value)
+            if problem:
+                return (f"{key} {shown(value)} {problem} ({key} is "
+                        f"{_option_words(options[key])}); {form}")
     host, colon, port = address.partition(":")
     try:
         ipaddress.IPv4Address(host)
     except ValueError:
         if host:  # none: refused as no multicast group, by lcm_url_problem
             return f"address {shown(host)} is not an IPv4 address; {form}"
-    if colon and not _decimal(port):
-        return f"port {shown(port)} is not a number; {form}"
+    problem = _integer_text_problem(port) if colon else None
+    if problem:
+        return f"port {shown(port)} {problem}; {form}"
     return None
+
+
+def _integer_text_problem(text: str) -> str | None:
+    """Why `text` is not a decimal integer as LCM's strtol(base 0) reads it, in words that
+    follow it, or None: digits after an optional '-' (no '+', `0x`, exponent or space) and
+    no leading zero (strtol would read it as octal). A negative one is out of every range:
+    the caller's range check names it."""
+    digits = text.removeprefix("-")
+    if not (digits.isascii() and digits.isdecimal()):
+        return "is not a decimal integer"
+    if len(digits) > 1 and digits.startswith("0"):
+        return "has a leading zero (LCM would read it as octal)"
+    return None
+
+
+def _option_words(option: LcmUrlOption) -> str:
+    """"WHAT, an integer from LOW to HIGH" for an option of LCM_URL_OPTIONS."""
+    return f"{option.what}, an integer from {option.low} to {option.high}"
 
 
 def lcm_url_option(text: str) -> str:
@@ -235,23 +275,29 @@ def lcm_url_problem(url: str) -> str | None:
 
 def _lcm_url_text_problem(url: str, provider: str) -> str | None:
     """What LCM would ignore or misread in `url`, a URL of `provider`, from its text: a query
-    option the provider does not take (LCM_URL_OPTIONS) or given twice, a ttl outside
-    MULTICAST_TTL_RANGE, and for udpm:// an address that is not a multicast IPv4 address
-    with an optional port from 1 to 65535."""
+    option the provider does not take (LCM_URL_OPTIONS) or given twice, a value outside its
+    option's range, and for udpm:// an address that is not a multicast IPv4 address with an
+    optional port from 1 to 65535. A value that is no decimal integer is
+    lcm_url_form_problem's."""
     address, _, query = url.split("://", 1)[1].partition("?")
     accepted, seen = LCM_URL_OPTIONS[provider], set()
+    takes = ("it takes " + "; ".join(f"{key}, {_option_words(option)}"
+                                     for key, option in accepted.items())
+             if accepted else "it takes none")
     for option in query.split("&") if query else ():
         key, _, value = option.partition("=")
+        if not option:
+            return (f"has an empty option (a '&' with nothing before or after it), which "
+                    f"LCM's {provider}:// does not take ({takes})")
         if key not in accepted:
-            takes = f"it takes {', '.join(accepted)}" if accepted else "it takes none"
             return (f"has the option {shown(key)}, which LCM's {provider}:// does not "
                     f"take ({takes})")
         if key in seen:
             return f"gives the option {key} twice"
         seen.add(key)
-        if key == "ttl" and _decimal(value) and not _decimal(value, MULTICAST_TTL_RANGE):
-            return (f"has ttl={shorten(value)}; a multicast TTL lies in "
-                    f"[{MULTICAST_TTL_RANGE[0]}, {MULTICAST_TTL_RANGE[1]}]")
+        bounds = accepted[key]
+        if not _decimal(value, (bounds.low, bounds.high)):
+            return f"has {key}={shorten(value)}; {key} is {_option_words(bounds)}"
     if provider != "udpm":
         return None
     host, colon, port = address.partition(":")
@@ -496,7 +542,11 @@ _SIMULATED_STATION_TAG = "!SimulatedStationConfig"
 @public_api
 def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
                          ) -> HardwareStationConfig:
-    """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field."""
+    """Reads a HardwareStationConfig mapping from YAML; ConfigError names a bad field.
+    `overrides` may not set one key twice to two values (refuse_a_key_set_twice), as
+    --config-set and a YAML mapping may not: neither would silently win."""
+    refuse_a_key_set_twice(overrides, f"LoadHardwareConfig({shown(str(filename))})",
+                           "overrides", kind="argument")
     text = read_yaml_text(filename, "the hardware config")
     data = parse_yaml(text, str(filename)) if text else None
     if text and top_level_tag(text) == _SIMULATED_STATION_TAG:

@@ -508,6 +508,16 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
     _refuse_tag(data, where, source)
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
+        if not isinstance(data, dict):
+            raise ConfigError(f"{source}: {_field(where)}must be a mapping of "
+                              f"{schema.__name__} fields ({_drake_field_names(schema)}), "
+                              f"got {_describe(data)}")
+        known = [field.name for field in getattr(schema, "__fields__", ())]
+        for key in data if known else ():
+            if key not in known and key != "_tag":  # a tag: refused above
+                path = f"{where}.{key}" if where else str(key)
+                raise ConfigError(f"{source}: field '{path}': unknown field '{path}' (known: "
+                                  f"{', '.join(sorted(known))})")
         _check_finite_numbers(data, source, where)
         _check_drake_scalars(data, schema, source, where)
         from pydrake.common.yaml import yaml_dump, yaml_load_typed
@@ -721,16 +731,22 @@ def _check_finite_numbers(data, source: str, where: str) -> None:
         _check_finite_numbers(value, source, path)
 
 
+def _drake_field_names(schema) -> str:
+    """The fields of a Drake config class, as a message lists them ("a, b, ...")."""
+    return ", ".join(field.name for field in getattr(schema, "__fields__", ())) or "its fields"
+
+
 def _check_drake_scalars(data, schema, source: str, where: str) -> None:
-    """Names the first field of a Drake config class's YAML data whose default is a number
-    or true/false and whose value is not one of that type: Drake's loader reads text such as
-    '0.5' into a number, where a field of ours refuses it (a quoted number is text)."""
+    """Names the first field of a Drake config class's YAML data whose default is a number,
+    true/false or text and whose value is not one of that type: Drake's loader reads text
+    such as '0.5' into a number, where a field of ours refuses it (a quoted number is text),
+    and words a list or mapping given for a name in its own terms."""
     if not isinstance(data, dict):
         return
     defaults = schema()
     for key, value in data.items():
         default = getattr(defaults, str(key), None)
-        hint = next((t for t in (bool, int, float) if type(default) is t), None)
+        hint = next((t for t in (bool, int, float, str) if type(default) is t), None)
         if hint is not None and not _is_scalar(value, hint):
             path = f"{where}.{key}" if where else str(key)
             raise ConfigError(f"{source}: field '{path}' must be {_SCALAR_WORDS[hint][0]}, got "

@@ -40,6 +40,16 @@ DRAKE_SECTION_PROBES = [  # (--set assignment, words the one error line holds)
      "field 'simulator_config.target_realtime_rate' must lie in [0, "),
     ("simulator_config.max_step_size=0.0", "field 'simulator_config.max_step_size' must lie in"),
     ("simulator_config.accuracy=5.0", "field 'simulator_config.accuracy' must lie in (0, 1]"),
+    # in the package's words, not Drake's ("Expected a <class 'str'> value ...", "The fields
+    # [...] were unknown to the schema")
+    ("plant_config.contact_model=[1]", "field 'plant_config.contact_model' must be a string, "
+                                       "got list [1]"),
+    ("simulator_config.integration_scheme={a: 1}",
+     "field 'simulator_config.integration_scheme' must be a string, got dict"),
+    ("plant_config.time_stepp=0.001", "field 'plant_config.time_stepp': unknown field "
+                                      "'plant_config.time_stepp' (known: "),
+    ("plant_config=[1]", "field 'plant_config' must be a mapping of MultibodyPlantConfig "
+                         "fields (time_step, "),
 ]
 
 RELATED_FIELD_PROBES = [
@@ -64,6 +74,27 @@ def test_a_bad_setting_stops_the_trial_with_one_line(assignment, words, tmp_path
     code, text = run_cli(["trial", "--set", assignment, "--out", "run"], capfd)
     assert_one_line_error(code, text, words, f"--set {assignment}")
     assert not (tmp_path / "run").exists()
+
+
+# Rule: a Drake config section (plant_config, simulator_config) that a scenario file gives as
+# no mapping (a list, a text, a number, null) is refused in one line naming the file, the
+# scenario and the field, and listing the section's fields, not in Drake's words ("YAML root
+# was a <class 'list'> but should have been a dict").
+@pytest.mark.parametrize("section, schema", [("plant_config", "MultibodyPlantConfig"),
+                                             ("simulator_config", "SimulatorConfig")])
+@pytest.mark.parametrize("value, described", [("[1, 2]", "list [1, 2]"), ("fast", "str 'fast'"),
+                                              ("3", "int 3"), ("null", "NoneType None")])
+def test_a_drake_section_that_is_no_mapping_is_refused_in_the_packages_words(
+        tmp_path, section, schema, value, described):
+    path = tmp_path / "s.yaml"
+    path.write_text(f"s:\n  object: {{name: box}}\n  {section}: {value}\n")
+    with pytest.raises(ConfigError) as refused:
+        LoadScenario(path, "s")
+    message = str(refused.value)
+    assert "\n" not in message and "YAML root" not in message, message
+    assert message.startswith(f"{path} [s]: field '{section}' must be a mapping of {schema} "
+                              "fields ("), message
+    assert message.endswith(f"got {described}"), message
 
 
 def test_a_sweep_refuses_a_bad_drake_setting_up_front(tmp_path, monkeypatch, capfd):

@@ -348,8 +348,9 @@ def test_environment_and_option_values_are_checked_before_a_library_gets_them(tm
     ascii_out.flush()
     assert ascii_out.buffer.getvalue() == b"wrote o/\\xe9t\\xe9_\\xfc.png\n"
     for option, words in (("ttl=zero", "does not parse as an LCM URL: ttl 'zero' is not a "
-                                       "number"),
-                          ("ttl=0&recv_buf_size=lots", "Invalid value for")):
+                                       "decimal integer"),
+                          ("ttl=0&recv_buf_size=lots", "recv_buf_size 'lots' is not a "
+                                                       "decimal integer")):
         problem = lcm_url_problem(f"udpm://239.255.76.67:8793?{option}")
         assert problem and words in problem, problem
     assert lcm_url_problem("udpm://239.255.76.67:8793?ttl=0") is None

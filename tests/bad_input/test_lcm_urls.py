@@ -40,7 +40,9 @@ def test_an_in_process_lcm_bus_is_refused_by_the_commands(tmp_path, monkeypatch,
         assert word in text, text
 
 
-ACCEPTED_UDPM = "which LCM's udpm:// does not take (it takes ttl, recv_buf_size)"
+ACCEPTED_UDPM = ("which LCM's udpm:// does not take (it takes ttl, a multicast TTL, an integer "
+                 "from 0 to 255; recv_buf_size, a socket receive buffer's size in bytes, an "
+                 "integer from 1 to 2147483647)")
 
 
 # Rule: an LCM URL's text is checked as LCM's providers read it: a query option the provider
@@ -51,7 +53,8 @@ ACCEPTED_UDPM = "which LCM's udpm:// does not take (it takes ttl, recv_buf_size)
     ("udpm://239.255.76.99:7699?tll=1", ["has the option 'tll'", ACCEPTED_UDPM]),
     ("udpm://239.255.76.99:7699?ttl=0&x=1", ["has the option 'x'", ACCEPTED_UDPM]),
     ("udpm://239.255.76.99:7699?ttl=0&ttl=1", ["gives the option ttl twice"]),
-    ("udpm://239.255.76.99:7699?ttl=300", ["has ttl=300; a multicast TTL lies in [0, 255]"]),
+    ("udpm://239.255.76.99:7699?ttl=300", ["has ttl=300; ttl is a multicast TTL, an integer "
+                                               "from 0 to 255"]),
     ("udpm://10.0.0.1:7699", ["has the address '10.0.0.1', which is not a multicast IPv4"]),
     ("udpm://239.255.76.99:0", ["has the port '0'"]),
     ("tcpq://127.0.0.1:7700?ttl=0", ["has the option 'ttl', which LCM's tcpq:// does not take "
@@ -87,9 +90,10 @@ FORM = "give udpm://GROUP:PORT, e.g. udpm://239.255.76.67:7667?ttl=0"
 
 
 @pytest.mark.parametrize("url, words", [
-    ("udpm://239.255.76.99:7699/", f"port '7699/' is not a number; {FORM}"),
-    ("udpm://239.255.76.99:y", f"port 'y' is not a number; {FORM}"),
-    ("udpm://239.255.76.99:7699?ttl=abc", f"ttl 'abc' is not a number; {FORM}"),
+    ("udpm://239.255.76.99:7699/", f"port '7699/' is not a decimal integer; {FORM}"),
+    ("udpm://239.255.76.99:y", f"port 'y' is not a decimal integer; {FORM}"),
+    ("udpm://239.255.76.99:7699?ttl=abc", f"ttl 'abc' is not a decimal integer (ttl is a "
+                                            f"multicast TTL, an integer from 0 to 255); {FORM}"),
     ("udpm://bus:7699", f"address 'bus' is not an IPv4 address; {FORM}"),
     ("garbage", "it names no provider (PROVIDER://ADDRESS); give e.g. "
                 "udpm://239.255.76.67:7667?ttl=0"),
@@ -129,7 +133,7 @@ def test_an_lcm_default_url_variable_that_does_not_parse_is_named_not_the_option
     assert_one_line_error(run.returncode, run.stderr, "tegrasp: error: the environment "
                           "variable LCM_DEFAULT_URL (the default of --lcm-url) "
                           f"'udpm://239.255.76.99:y' does not parse as an LCM URL: port 'y' "
-                          f"is not a number; {FORM}")
+                          f"is not a decimal integer; {FORM}")
 
 
 def test_an_lcm_url_lcm_takes_is_accepted():
@@ -137,6 +141,44 @@ def test_an_lcm_url_lcm_takes_is_accepted():
     for url in ("udpm://239.255.76.67:7667?ttl=1&recv_buf_size=2097152",
                 "udpm://239.255.76.67:7667", "udpm://239.255.76.67", "memq://"):
         assert lcm_url_problem(url) is None, url
+
+
+# Rule: each URL option has a declared range (LCM_URL_OPTIONS): a value outside it, or not
+# written as a decimal integer LCM reads as written (strtol reads `010` as octal 8, `1e6` as
+# 1, a negative ttl wrapped to 255), is refused naming the option and its range, as is a
+# port with a leading zero (`07667`: port 4023).
+@pytest.mark.parametrize("query, words", [
+    ("recv_buf_size=0", "has recv_buf_size=0; recv_buf_size is a socket receive buffer's "
+                        "size in bytes, an integer from 1 to 2147483647"),
+    ("recv_buf_size=-5", "has recv_buf_size=-5; recv_buf_size is"),
+    ("recv_buf_size=2147483648", "has recv_buf_size=2147483648; recv_buf_size is"),
+    ("recv_buf_size=99999999999", "an integer from 1 to 2147483647"),
+    ("recv_buf_size=1e6", "recv_buf_size '1e6' is not a decimal integer (recv_buf_size is a "
+                          "socket receive buffer's size in bytes, an integer from 1 to "
+                          "2147483647)"),
+    ("recv_buf_size=0x10", "recv_buf_size '0x10' is not a decimal integer"),
+    ("recv_buf_size=+5", "recv_buf_size '+5' is not a decimal integer"),
+    ("ttl=-1", "has ttl=-1; ttl is a multicast TTL, an integer from 0 to 255"),
+    ("ttl=010", "ttl '010' has a leading zero (LCM would read it as octal) (ttl is a "
+                "multicast TTL, an integer from 0 to 255)"),
+    ("ttl=0&", "has an empty option (a '&' with nothing before or after it)"),
+])
+def test_an_lcm_url_option_out_of_its_range_is_refused_naming_the_range(query, words):
+    from tegrasp_drake.hardware.config import lcm_url_problem
+    problem = lcm_url_problem(f"udpm://239.255.76.67:7667?{query}")
+    assert problem and words in problem, problem
+    problem = lcm_url_problem("udpm://239.255.76.67:07667")
+    assert problem and "port '07667' has a leading zero" in problem, problem
+    assert lcm_url_problem("udpm://239.255.76.67:7667?recv_buf_size=2147483647&ttl=255") is None
+
+
+def test_an_lcm_url_option_out_of_range_in_a_hardware_config_names_the_field(tmp_path, capfd):
+    _hardware_config(tmp_path, "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=0")
+    code, text = run_cli(["hardware", "--config", str(tmp_path / "hw.yaml")], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, "field 'arm.lcm_url' has recv_buf_size=0; "
+                          "recv_buf_size is a socket receive buffer's size in bytes, an integer "
+                          "from 1 to 2147483647")
 
 
 # Rule: an LCM URL that cannot be used is named where it came from: the LCM_DEFAULT_URL

@@ -105,8 +105,28 @@ def test_saving_removes_an_objects_stale_files(saved):
 
 def test_saving_requires_the_paper_transitions(tmp_path):
     events = make_events()
-    with pytest.raises(ValueError, match="place_unload"):
+    with pytest.raises(ValueError, match="save_memorized_events: object 'box' lacks the "
+                       "transitions 'place_unload' .each object needs reach_load, .*nothing"):
         save_memorized_events(tmp_path, [e for t, e in events.items() if t != "place_unload"])
+
+
+@pytest.mark.parametrize("changed", [False, True], ids=["same-event", "another-window"])
+def test_saving_two_events_of_one_object_and_transition_is_refused_naming_them(
+        saved, changed):
+    """Neither is kept silently: one file holds each object's transition."""
+    events_dir, events = saved
+    before = {path: path.read_bytes() for path in events_dir.rglob("*") if path.is_file()}
+    again = events["load_lift"]
+    if changed:
+        again = dataclasses.replace(again, transition_time_s=again.transition_time_s + 0.1)
+    given = [*events.values(), again]
+    with pytest.raises(ValueError) as refused:
+        save_memorized_events(events_dir, given)
+    message = str(refused.value)
+    assert ("events[1] and events[4] are both object 'box', transition 'load_lift' (one file, "
+            "box/load_lift.json, holds it)") in message, message
+    assert "nothing was saved" in message and "\n" not in message, message
+    assert {path: path.read_bytes() for path in events_dir.rglob("*") if path.is_file()} == before
 
 
 def truncate(path):

@@ -41,6 +41,23 @@ def test_hardware_config_round_trips_through_yaml(tmp_path):
     assert LoadHardwareConfig(path) == config
 
 
+# Rule: LoadHardwareConfig's overrides may not set one key twice to two values, as
+# --config-set given twice and a key repeated in the file may not: neither silently wins.
+@pytest.mark.parametrize("overrides", [
+    ["gripper.port=/dev/ttyUSB4", "gripper.port=/dev/ttyUSB5"],
+    ["gripper.port=/dev/ttyUSB4", "tactile.port=/dev/ttyACM1", "gripper.port = /dev/ttyUSB5"],
+])
+def test_hardware_config_overrides_setting_a_key_twice_are_refused(tmp_path, overrides):
+    path = write(tmp_path, "hw.yaml", "gripper: {port: /dev/ttyUSB3}\n")
+    with pytest.raises(ConfigError) as refused:
+        LoadHardwareConfig(path, overrides)
+    message = str(refused.value)
+    assert str(path) in message and "argument 'overrides' sets gripper.port twice" in message
+    assert "\n" not in message, message
+    same = ["gripper.port=/dev/ttyUSB4", "gripper.port=/dev/ttyUSB4"]
+    assert LoadHardwareConfig(path, same).gripper.port == "/dev/ttyUSB4"
+
+
 def test_a_misspelt_hardware_field_is_named(tmp_path):
     path = write(tmp_path, "hw.yaml", "gripper: {prot: /dev/ttyUSB0}\n")
     with pytest.raises(ConfigError, match="unknown field 'gripper.prot'"):
