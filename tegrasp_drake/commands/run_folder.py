@@ -12,12 +12,13 @@ import shutil
 import tempfile
 
 from tegrasp_drake.events.event_file import INDEX_FILE
-from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
-from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_STEMS
+from tegrasp_drake.figures.figure_files import FIGURE_FORMATS, starts_as_figure
+from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_KEYS, TRIAL_FIGURE_STEMS
 from tegrasp_drake.rig.files import (FOLDER_HELD, JSON_OBJECT_START, FolderHeldError,
                                      absent_folders, claim_folder, file_problem,
                                      folder_problem, held_folder, interruptions_deferred,
-                                     made_folders_removed_if_empty, own_staging_suffix,
+                                     load_json, made_folders_removed_if_empty,
+                                     own_staging_suffix, read_bounded,
                                      remove_stale_staging_files_of, write_atomically)
 from tegrasp_drake.rig.echo import shown
 
@@ -138,6 +139,9 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
             raise RunFolderError(
                 f"--out {folder}: {name} {problem.split(';')[0]}, where the run writes its "
                 f"{name}; remove it yourself, or give another --out")
+    problem = (out is not None or replace_default) and foreign_figure_problem(folder)
+    if problem:
+        raise RunFolderError(problem)
     if out is not None and holds_run(folder) and not overwrite:
         present = ", ".join(name for name in RUN_FILES if (folder / name).exists())
         raise RunFolderError(f"{folder} already holds a run ({present}); give another "
@@ -320,11 +324,60 @@ def run_file_names() -> set[str]:
 def earlier_run_files(folder) -> list[pathlib.Path]:
     """The files of the run `folder` holds, under a run's own names (run_file_names): what
     a new run replaces. Known by name, since the absolute paths result.json recorded name
-    where the run was written, which a moved or copied folder no longer is. Nothing else is
-    touched: not the replay an earlier `--html` wrote (a file the user named, and may have
-    edited or replaced since), nor any file result.json names."""
+    where the run was written, which a moved or copied folder no longer is; a file under a
+    figure's name only when the run wrote it (is_earlier_figure). Nothing else is touched:
+    not the replay an earlier `--html` wrote (a file the user named, and may have edited or
+    replaced since), nor any file result.json names."""
     folder = pathlib.Path(folder)
-    return [folder / name for name in sorted(run_file_names()) if (folder / name).is_file()]
+    recorded = recorded_figure_names(folder)
+    return [folder / name for name in sorted(run_file_names())
+            if (folder / name).is_file() and not (folder / name).is_symlink()
+            and (name in RUN_FILES or is_earlier_figure(folder / name, recorded))]
+
+
+# The most a run's result.json holds: its transitions and scores are a few kB.
+MAX_RESULT_BYTES = 16_000_000
+
+
+def recorded_figure_names(folder) -> set[str]:
+    """The names of the figures the run in `folder` recorded in its result.json (the last part
+    of each figure field's path: the folder may have been moved or copied since); none when
+    the folder holds no result.json that reads as a run's (a JSON object)."""
+    try:
+        result = load_json(read_bounded(pathlib.Path(folder) / RESULT_FILE, MAX_RESULT_BYTES,
+                                        devices=()).decode("utf-8"))
+    except (OSError, ValueError, RecursionError):  # missing, not a file, not JSON, too large
+        return set()
+    if not isinstance(result, dict):
+        return set()
+    paths = (result.get(key) for key in TRIAL_FIGURE_KEYS.values())
+    return {pathlib.PurePath(path).name for path in paths if isinstance(path, str)}
+
+
+def is_earlier_figure(path, recorded: set[str]) -> bool:
+    """Whether the file at `path`, under a figure's name, is a figure a run of this tool
+    wrote there: its folder's result.json records it (`recorded`, recorded_figure_names) and it
+    starts as a figure of its format does (starts_as_figure). Anything else there, the
+    user's notes or own picture, is never replaced or removed by a run."""
+    path = pathlib.Path(path)
+    return path.name in recorded and starts_as_figure(path)
+
+
+def foreign_figure_problem(folder) -> str | None:
+    """Why a run may not be written into `folder`, or None: a regular file there under a
+    figure's name (any format: a run replaces its own format's and removes the others') that
+    no run of this tool wrote (is_earlier_figure). Asked before the run simulates."""
+    folder = pathlib.Path(folder)
+    recorded = recorded_figure_names(folder)
+    for name in sorted(run_file_names() - set(RUN_FILES)):
+        path = folder / name
+        if not path.is_file() or path.is_symlink() or is_earlier_figure(path, recorded):
+            continue
+        why = ("is not a figure this tool wrote" if not starts_as_figure(path) else
+               f"is not a figure of the run there (its {RESULT_FILE} does not list it)")
+        return (f"--out {folder}: {name} {why}, and a run writes or removes its {name}; move "
+                "it out of the folder, or give another --out")
+    return None
 
 
 def write_result(path, result: dict) -> pathlib.Path:

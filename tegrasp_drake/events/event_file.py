@@ -16,7 +16,8 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
-from tegrasp_drake.rig.files import JsonFileError, error_line, one_line, read_json_file
+from tegrasp_drake.rig.files import (JsonFileError, NotAFileError, error_line, load_json,
+                                     one_line, read_bounded, read_json_file)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DESCRIPTION_FIELDS, ObjectConfig,
                                        description_differences, object_name_problem)
 from tegrasp_drake.tactile.sampling import samples_per_window
@@ -351,6 +352,32 @@ def read_memorized_event(path, *, object_name: str | None = None,
             raise MemorizedEventError(path, f"holds {name} '{found}', expected '{expected}'",
                                       owner)
     return event
+
+
+def recorded_file_problem(path, expected_format: str) -> str | None:
+    """Why the file at `path` is not one `tegrasp record-events` wrote in `expected_format`
+    (EVENT_FORMAT: an event's file, INDEX_FORMAT: the index), in words that follow it, or None:
+    it is one, or nothing is there. A recording replaces only its own files; the user's (a
+    text file named like an event file) are never replaced. Known by the JSON object's
+    "format" field, or, in a file damaged past JSON (which re-recording remakes), by that
+    field as the writer writes it."""
+    try:
+        raw = read_bounded(path, MAX_EVENT_FILE_BYTES, devices=())
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except NotAFileError as error:
+        return error.strerror.split(";")[0]
+    except OSError as error:  # too large, unreadable
+        return f"cannot be checked ({error.strerror or error})"
+    text = raw.decode("utf-8", errors="replace")
+    try:
+        data = load_json(text)
+    except (ValueError, RecursionError):
+        data = None
+    if (isinstance(data, dict) and data.get("format") == expected_format) or (
+            data is None and f'"format": {json.dumps(expected_format)}' in text):
+        return None
+    return f"is not a '{expected_format}' file {RECORD_COMMAND} wrote"
 
 
 def has_index(events_dir) -> bool:

@@ -15,9 +15,9 @@ from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, held_fo
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.events.event_file import (
-    FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
+    EVENT_FORMAT, FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
     remake_advice, event_json_text, event_problem, event_summary, event_to_json, has_index,
-    read_index, read_memorized_event)
+    read_index, read_memorized_event, recorded_file_problem)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.one_grasp import object_events_problem
 from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
@@ -38,15 +38,25 @@ def check_events_destination(events_dir, object_names: Iterable[str], *,
                              keep_other_objects: bool = True) -> None:
     """EventsDestinationError unless save_memorized_events can put `object_names`' events and the
     index into `events_dir`: no folder or non-folder path part where a file belongs and, when other
-    objects' entries are kept, an index that reads. Asked before recording and by the save."""
+    objects' entries are kept, an index that reads; and no file there that the recording
+    did not write (recorded_file_problem): a save replaces an object's event files and the
+    index, and removes the object's event files it does not write again, so a file of the
+    user's at one of those paths would be lost. Asked before recording and by the save."""
     events_dir = pathlib.Path(events_dir)
     index = events_dir / INDEX_FILE
-    targets = [index] + [events_dir / object_name / f"{transition}.json"
-                         for object_name in object_names for transition in TRANSITIONS]
-    for path in targets:
+    targets = [(index, INDEX_FORMAT)] + [
+        (events_dir / object_name / f"{transition}.json", EVENT_FORMAT)
+        for object_name in object_names for transition in TRANSITIONS]
+    for path, expected_format in targets:
         problem = replace_problem(path)
         if problem:
             raise EventsDestinationError(f"{path} {problem}, or give another events folder")
+        problem = (not (path == index and keep_other_objects)  # read_index's, below
+                   and recorded_file_problem(path, expected_format))
+        if problem:
+            raise EventsDestinationError(
+                f"{path} {problem}, and the recording writes or removes a file there; move it "
+                "out of the folder, or give another events folder")
     if keep_other_objects and os.path.lexists(index):
         try:
             read_index(events_dir)
@@ -190,10 +200,10 @@ def _save_held(events_dir: pathlib.Path, events: list[MemorizedEvent], objects: 
                 object_dir = events_dir / object_name
                 new_files = {f"{e.transition}.json" for e in events
                              if e.object_name == object_name}
-                if object_dir.is_dir():
-                    for stale in sorted(object_dir.glob("*.json")):
-                        if stale.name not in new_files:
-                            stale.unlink()
+                for transition in TRANSITIONS:  # the object's own event files only
+                    stale = object_dir / f"{transition}.json"
+                    if stale.name not in new_files and stale.is_file():
+                        stale.unlink()
             for temporary, path in staged:
                 os.replace(temporary, path)
     except BaseException:

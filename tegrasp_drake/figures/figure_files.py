@@ -48,6 +48,19 @@ def check_figure_path(path) -> pathlib.Path:
     return path
 
 
+def starts_as_figure(path) -> bool:
+    """Whether the file at `path` starts as a figure of the format its suffix names does
+    (FIGURE_STARTS): a figure this tool wrote, not the user's notes under a figure's name. Only
+    the head is read; False when it cannot be."""
+    path = check_figure_path(path)
+    try:
+        with open(path, "rb") as existing:
+            head = existing.read(1024)
+    except OSError:
+        return False
+    return head.startswith(FIGURE_STARTS[path.suffix.lstrip(".").lower()])
+
+
 def figure_replace_problem(path, *, overwrite: bool = True) -> str | None:
     """Why a figure may not be written at `path`, in words that follow it, or None: an existing
     file is replaced only when it is a figure of the format `path`'s suffix names (its first

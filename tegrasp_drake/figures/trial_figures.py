@@ -13,6 +13,9 @@ from tegrasp_drake.figures.trial_annotations import logged_transitions
 
 # The figures' file stems (STEM.FORMAT in the run folder).
 TRIAL_FIGURE_STEMS = ("states", "signals", "contact_ra", "avoid")
+# The result's field that records each figure's path (result.json), by stem.
+TRIAL_FIGURE_KEYS = dict(zip(TRIAL_FIGURE_STEMS, ("figure", "signals_figure",
+                                                  "contact_ra_figure", "avoid_figure")))
 
 
 def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, str]:
@@ -21,13 +24,14 @@ def write_trial_figures(log, folder, figure_format: str = "png") -> dict[str, st
     avoid_figure (Fig. 10, after a hit in Hold)."""
     states, signals, contact_ra, avoid = (figure_path(folder, stem, figure_format)
                                           for stem in TRIAL_FIGURE_STEMS)
-    figures = {"figure": plot_trial_states(log, states),
-               "signals_figure": plot_trial_signals(log, signals)}
+    keys = TRIAL_FIGURE_KEYS
+    figures = {keys["states"]: plot_trial_states(log, states),
+               keys["signals"]: plot_trial_signals(log, signals)}
     contact_ra = plot_contact_ra(log, contact_ra)
     if contact_ra is not None:
-        figures["contact_ra_figure"] = contact_ra
+        figures[keys["contact_ra"]] = contact_ra
     if any(t.to_mode == Mode.AVOID for t in logged_transitions(log)):
-        figures["avoid_figure"] = plot_avoid_reaction(
+        figures[keys["avoid"]] = plot_avoid_reaction(
             log, avoid,
             hit_rule=logged_hit_rule(log))
     return figures

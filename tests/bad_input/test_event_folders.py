@@ -135,6 +135,55 @@ def test_record_events_refuses_a_destination_before_simulating(make, words, refu
 
 
 
+# Rule: a recording replaces only files it wrote: a file at one of an object's event paths
+# (any transition: a save removes the object's event files it does not write again) that is
+# not a memorized event's file, a text file named like one, is the user's; record-events
+# refuses before it simulates, naming the file, and the file stays (it was replaced).
+@pytest.mark.parametrize("name, content", [
+    ("reach_load.json", "my notes on the box's first contact\n"),
+    ("hold_avoid.json", '{"format": "my.own.format", "notes": []}\n'),
+    ("lift_hold.json", "")], ids=["text", "other-json", "empty"])
+def test_record_events_refuses_a_users_file_at_an_event_files_path(name, content, tmp_path,
+                                                                   capfd, no_simulation):
+    events = tmp_path / "ev"
+    save_memorized_events(events, memorized_events("box"))
+    (events / "box" / name).write_text(content)
+    before = folder_contents(events)
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
+    assert_one_line_error(code, text, f"--events {events}", str(events / "box" / name),
+                          "is not a 'tegrasp.memorized_event' file", "move it",
+                          "nothing was recorded")
+    assert folder_contents(events) == before
+
+
+def test_a_save_replaces_its_own_event_files_and_keeps_the_users(tmp_path):
+    """A save over an earlier recording replaces the object's event files (a damaged one too,
+    which re-recording remakes) and leaves a file of the user's beside them."""
+    events = tmp_path / "ev"
+    save_memorized_events(events, memorized_events("box", seed=1))
+    damaged = events / "box" / "load_lift.json"
+    damaged.write_text(damaged.read_text()[:300])  # past its "format" field, cut
+    (events / "box" / "notes.json").write_text("[]")
+    save_memorized_events(events, memorized_events("box", seed=2))
+    assert (events / "box" / "notes.json").read_text() == "[]"
+    loaded = events_folder.load_memorized_events(events, "box")
+    assert set(loaded) >= {"reach_load", "load_lift", "place_unload"}
+
+
+def test_save_memorized_events_refuses_a_users_file_at_an_event_files_path(tmp_path):
+    events = tmp_path / "ev"
+    (events / "mine").mkdir(parents=True)
+    (events / "mine" / "place_unload.json").write_text("my notes")
+    with pytest.raises(events_folder.EventsDestinationError, match="place_unload.json is not"):
+        save_memorized_events(events, memorized_events("mine"))
+    assert (events / "mine" / "place_unload.json").read_text() == "my notes"
+    with pytest.raises(events_folder.EventsDestinationError, match="index.json is not"):
+        (events / "index.json").write_text("my index")
+        (events / "mine" / "place_unload.json").unlink()
+        save_memorized_events(events, memorized_events("mine"), keep_other_objects=False)
+    assert (events / "index.json").read_text() == "my index"
+
+
 @pytest.mark.parametrize("exists", [True, False], ids=["folder", "new folder"])
 def test_record_events_refuses_a_full_disk_before_simulating(exists, tmp_path, monkeypatch,
                                                              capfd, no_simulation):

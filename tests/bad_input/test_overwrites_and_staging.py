@@ -29,15 +29,24 @@ from tests.bad_input.probes import (FAKE_TRIALS, assert_one_line_error, folder_c
 from tests.commands.test_run_folder import _ended_process_id
 
 
+def earlier_run_of(folder, *names, log=b"earlier"):
+    """`folder` holding an earlier run as a run leaves it: trial.npz (`log`), each of `names`
+    a real figure (save_figure) and result.json recording them under the result's fields."""
+    from tegrasp_drake.figures.figure_files import new_figure, save_figure
+    from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_KEYS
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "trial.npz").write_bytes(log)
+    result = {"log": str(folder / "trial.npz"), "result": str(folder / "result.json")}
+    for name in names:
+        save_figure(new_figure(1, 1), folder / name)
+        result[TRIAL_FIGURE_KEYS[name.split(".")[0]]] = str(folder / name)
+    (folder / "result.json").write_text(json.dumps(result))
+    return folder
+
+
 def test_an_overwritten_run_keeps_none_of_the_earlier_runs_figures(tmp_path):
-    folder = tmp_path / "run"
-    folder.mkdir()
-    for name in ("trial.npz", "states.png", "signals.png"):
-        (folder / name).write_bytes(b"earlier")
+    folder = earlier_run_of(tmp_path / "run", "states.png", "signals.png")
     (folder / "notes.txt").write_text("the user's own file")
-    (folder / "result.json").write_text(json.dumps(
-        {"log": str(folder / "trial.npz"), "figure": str(folder / "states.png"),
-         "signals_figure": str(folder / "signals.png"), "result": str(folder / "result.json")}))
     with run_folder.staged_run(folder) as stage:
         for name in ("trial.npz", "states.svg", "signals.svg"):
             (stage / name).write_bytes(b"new")
@@ -152,16 +161,9 @@ def test_a_killed_hardware_runs_staging_log_is_removed_by_the_next_run(tmp_path,
 @pytest.mark.parametrize("how", ["moved", "copied"])
 def test_an_overwrite_into_a_moved_or_copied_run_folder_replaces_the_earlier_run(tmp_path, how):
     from tegrasp_drake.commands import run_folder
-    written = tmp_path / "written"
-    written.mkdir()
-    for name in ("trial.npz", "states.png", "signals.png", "contact_ra.png"):
-        (written / name).write_bytes(b"earlier")
+    written = earlier_run_of(tmp_path / "written", "states.png", "signals.png",
+                             "contact_ra.png")
     (written / "mynotes.txt").write_text("the user's own file")
-    (written / "result.json").write_text(json.dumps(
-        {"log": str(written / "trial.npz"), "figure": str(written / "states.png"),
-         "signals_figure": str(written / "signals.png"),
-         "contact_ra_figure": str(written / "contact_ra.png"),
-         "result": str(written / "result.json")}))
     folder = tmp_path / "elsewhere"
     (shutil.move if how == "moved" else shutil.copytree)(written, folder)
     with run_folder.staged_run(folder) as stage:
@@ -202,11 +204,8 @@ def test_an_overwrite_deletes_no_file_the_earlier_result_names(tmp_path):
 # each file by name.
 def test_an_overwrite_says_what_it_replaced_and_removed(tmp_path, caplog):
     from tegrasp_drake.commands import run_folder
-    folder = tmp_path / "run"
-    folder.mkdir()
-    for name in ("trial.npz", "states.png", "notes.txt"):
-        (folder / name).write_bytes(b"earlier")
-    (folder / "result.json").write_text(json.dumps({"log": str(folder / "trial.npz")}))
+    folder = earlier_run_of(tmp_path / "run", "states.png")
+    (folder / "notes.txt").write_bytes(b"earlier")
     with caplog.at_level(logging.INFO, logger=run_folder.__name__):
         with run_folder.staged_run(folder) as stage:
             (stage / "trial.npz").write_bytes(b"new")
@@ -366,6 +365,79 @@ def test_a_link_under_a_run_files_name_refuses_the_trial_and_stays(tmp_path, cap
     assert code == 1, text
     assert f"{name} is a symbolic link" in text and text.count("\n") == 0, text
     assert (folder / name).is_symlink() and precious.read_text() == "<svg/>"
+
+
+# Rule: a file under a figure's name (any format: a run replaces its own format's and removes
+# the others') that no run of this tool wrote is the user's: a trial into that folder is
+# refused before it simulates, with or without --overwrite, naming the file, and the file
+# stays. A run's own figure is one its result.json lists that starts as its format does: the
+# user's notes saved as states.png are not, nor the user's own picture the run never listed
+# (both were replaced, or removed as "the earlier run's").
+USERS_PICTURE = b"\x89PNG\r\n\x1a\n the user's own picture"
+
+
+@pytest.mark.parametrize("name, content, overwrite, earlier", [
+    ("states.png", b"earlier", True, True),  # listed by result.json, but not a figure
+    ("avoid.png", USERS_PICTURE, True, True),  # a PNG, but the earlier run never wrote it
+    ("signals.svg", b"<svg>my drawing</svg>", True, True),  # removed as the other format
+    ("states.png", USERS_PICTURE, False, False),  # an existing folder that holds no run
+    ("contact_ra.pdf", b"earlier", False, False)])
+def test_a_users_file_under_a_figures_name_refuses_the_trial_and_stays(
+        tmp_path, capfd, monkeypatch, name, content, overwrite, earlier):
+    from tegrasp_drake.runs import trial as trial_module
+    monkeypatch.setattr(trial_module, "run_trial",
+                        lambda *a, **k: pytest.fail("the trial was simulated"))
+    folder = tmp_path / "ow"
+    if earlier:
+        earlier_run_of(folder, "states.png", "signals.png")
+    folder.mkdir(exist_ok=True)
+    (folder / name).write_bytes(content)
+    before = folder_contents(folder)
+    code, text = run_cli(["trial", "--set", "random_seed=633", "--out", str(folder)]
+                         + ["--overwrite"] * overwrite, capfd)
+    assert code == 1, text
+    assert text.count("\n") == 0 and f"{name} is not a figure" in text, text
+    assert "move it" in text and "another --out" in text, text
+    assert folder_contents(folder) == before
+
+
+def test_demo_refuses_a_users_file_under_a_figures_name_in_its_own_folder(
+        tmp_path, capfd, monkeypatch):
+    from tegrasp_drake.runs import trial as trial_module
+    monkeypatch.setattr(trial_module, "run_trial",
+                        lambda *a, **k: pytest.fail("the trial was simulated"))
+    monkeypatch.chdir(tmp_path)
+    folder = earlier_run_of(tmp_path / "out" / "demo", "states.png")
+    (folder / "avoid.svg").write_bytes(b"earlier")
+    code, text = run_cli(["demo"], capfd)
+    assert code == 1 and "avoid.svg is not a figure" in text, text
+    assert (folder / "avoid.svg").read_bytes() == b"earlier"
+
+
+def test_a_commit_removes_no_file_under_a_figures_name_the_earlier_run_did_not_write(tmp_path):
+    folder = earlier_run_of(tmp_path / "run", "states.png")
+    (folder / "avoid.png").write_bytes(USERS_PICTURE)
+    (folder / "signals.pdf").write_bytes(b"earlier")
+    with run_folder.staged_run(folder) as stage:
+        (stage / "trial.npz").write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {"log": str(stage / "trial.npz")})
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "avoid.png", "result.json", "signals.pdf", "trial.npz"]
+    assert (folder / "avoid.png").read_bytes() == USERS_PICTURE
+
+
+# Rule: an --overwrite replaces the earlier run's real figures, of its format and the others.
+@pytest.mark.parametrize("figure_format", ["png", "svg"])
+def test_an_overwrite_replaces_the_earlier_runs_own_figures(tmp_path, figure_format):
+    folder = earlier_run_of(tmp_path / "run", "states.png", "signals.png", "avoid.png")
+    assert run_folder.choose_run_folder(str(folder), default="unused", replace_default=False,
+                                        overwrite=True) == folder
+    with run_folder.staged_run(folder) as stage:
+        for stem in ("states", "signals"):
+            (stage / f"{stem}.{figure_format}").write_bytes(b"new")
+        run_folder.commit_run(stage, folder, {})
+    assert sorted(p.name for p in folder.iterdir()) == [
+        "result.json", f"signals.{figure_format}", f"states.{figure_format}"]
 
 
 # Rule: every command that writes a run into a folder takes one lock, the folder's own: a
