@@ -25,7 +25,7 @@ from tegrasp_drake.events import tactile_trial_from_log
 from tegrasp_drake.events.events_folder import find_memorized_events
 from tegrasp_drake.recording.detection_quality import (choose_thresholds, rate_point, roc_curve,
                                                        scored_span)
-from tegrasp_drake.runs.grasp_outcome import physical_events
+from tegrasp_drake.scenario.grasp_outcome import physical_events
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.scenario.trial_log_file import load_trial_log
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS

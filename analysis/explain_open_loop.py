@@ -17,7 +17,7 @@ OBJECTS = ("box", "thick_cylinder", "thin_cylinder")
 
 def run_corner(job):
     """(object, (dx, dy)) -> (times, object xyz [m], tilt [deg], result)."""
-    from tegrasp_drake.runs.grasp_outcome import tilt_deg
+    from tegrasp_drake.scenario.grasp_outcome import tilt_deg
     from tegrasp_drake.scenario.scenario import LoadScenario
     from tegrasp_drake.runs.trial import run_trial
     name, (dx, dy) = job

@@ -1,5 +1,5 @@
 """Judge a sweep's trials again from their logs with the current judge
-(runs/trial.judge_trial), e.g. after the judge changed; writes a results folder of
+(scenario/trial_judge.judge_trial), e.g. after the judge changed; writes a results folder of
 updated records beside the original (records' results replaced, nothing re-simulated).
 
     python analysis/rejudge_from_logs.py RESULTS LOGS OUT
@@ -21,9 +21,9 @@ from tegrasp_drake.commands.script_output import (SWEEP_LOGS_ADVICE, load_sweep_
                                                   script_parser)
 from tegrasp_drake.control.grasp_modes import Transition
 from tegrasp_drake.sweep.records import TRIALS_FOLDER, make_record, write_record
-from tegrasp_drake.runs.trial import judge_trial
 from tegrasp_drake.sweep.trial_function import (load_record_log, scenario_from_trial_spec,
                                                 trial_log_name)
+from tegrasp_drake.scenario.trial_judge import judge_trial
 from tegrasp_drake.scenario.moved_keys import migrate_stored_trial
 
 
@@ -48,7 +48,7 @@ def main(argv=None) -> int:
                          "--logs folder of the sweep that wrote the records")
     for trial_id, path in logs.items():  # each log its record's trial's, before OUT is made
         if path.is_file():
-            load_record_log(path, loaded.records[trial_id])
+            load_record_log(path, loaded.records[trial_id], rejudge=False)
     (args.out / TRIALS_FOLDER).mkdir(parents=True)
     changed = 0
     for trial_id, record in loaded.records.items():
@@ -57,7 +57,8 @@ def main(argv=None) -> int:
         if result is not None and path.is_file():
             scenario = scenario_from_trial_spec(migrate_stored_trial(record["trial"]))
             transitions = [Transition.from_dict(t) for t in result["transitions"]]
-            judged = judge_trial(load_record_log(path, record), transitions, scenario)
+            judged = judge_trial(load_record_log(path, record, rejudge=False), transitions,
+                                 scenario)
             new = dict(result, **judged)
             changed += int(json.dumps(new, sort_keys=True, default=str)
                            != json.dumps(result, sort_keys=True, default=str))

@@ -38,7 +38,7 @@ class GraspScriptConfig:
     # object, the grip's settling and half a memorized window (recording/paper_events.py checks)
     load_s: float = bounded(1.8, low=0.0, low_open=True, high=30.0, unit="s")
     # a trial judges the object held only once it is 2 cm above where it rested
-    # (runs/grasp_outcome.py, LIFTED_HEIGHT_M): a lower lift could never be held (and a lift
+    # (scenario/grasp_outcome.py, LIFTED_HEIGHT_M): a lower lift could never be held (and a lift
     # of 0 stalls Lift, whose remaining share divides by it)
     lift_height: float = bounded(0.06, low=0.02, high=0.3, unit="m",
                                  why="a trial counts the object held 2 cm above its rest")

@@ -5,7 +5,7 @@ The taxels, sampled at 108 Hz, see the contact up to one period after the film."
 
 from tegrasp_drake.figures.figure_files import new_figure, save_figure
 from tegrasp_drake.figures.trial_annotations import run_description
-from tegrasp_drake.runs.grasp_outcome import first_contact_time
+from tegrasp_drake.scenario.grasp_outcome import first_contact_time
 from tegrasp_drake.rig.channels import FINGER_NAMES
 
 CONTACT_ZOOM_S = (-0.04, 0.06)  # the window around first contact [s]

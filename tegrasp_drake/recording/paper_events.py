@@ -8,9 +8,9 @@ from collections.abc import Callable
 from typing import Annotated
 
 from tegrasp_drake.recording.campaign import CampaignRun, RecordEventsError, cut_events
-from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time,
-                                              grip_fraction_at, object_sa, physical_events,
-                                              scripted_lift_start)
+from tegrasp_drake.scenario.grasp_outcome import (GRIP_FRACTION, first_contact_time,
+                                                  grip_fraction_at, object_sa, physical_events,
+                                                  scripted_lift_start)
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.scenario import Scenario

@@ -1,7 +1,6 @@
 """Runs of the grasp and their judgement.
 
 - trial.py: run_trial, a simulated closed-loop trial, judged.
-- grasp_outcome.py: the ground-truth judge and the physical events' times.
 - ideal_grasp.py: run_ideal_grasp, the scripted open-loop grasp (Sec. III-A).
 - hardware_run.py: run_on_hardware, the grasp on the devices in real time, logged.
 - hardware_log_reader.py: a hardware run's LCM log read back.

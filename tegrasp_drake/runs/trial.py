@@ -1,6 +1,7 @@
 """One closed-loop grasp trial: build the station and controller, simulate until the state
-machine ends or time runs out, log, and judge it against the ground truth. `run_trial`
-returns a TrialResult (a sweep's trial function: sweep/trial_function.py)."""
+machine ends or time runs out, log, and judge it against the ground truth
+(scenario/trial_judge.py, which a trial log's reader re-runs). `run_trial` returns a
+TrialResult (a sweep's trial function: sweep/trial_function.py)."""
 
 import logging
 import time
@@ -9,18 +10,11 @@ from typing import Annotated
 
 from pydrake.geometry import Meshcat
 
-from tegrasp_drake.control.corrective_actions import corrective_action_of
-from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode, Transition
-from tegrasp_drake.events.transitions import event_transition
+from tegrasp_drake.control.grasp_modes import TERMINAL_MODES, Mode
 from tegrasp_drake.scenario.grasp_diagram import (MakeGraspDiagram, MakeSimulatedStation,
                                                   MakeSimulator, simulated_duration_range)
-from tegrasp_drake.scenario.physical_event_search import physical_event_search_starts
-from tegrasp_drake.scenario.trial_result import (FALSE_TRIGGER_MARGIN_S, HIT_EVENT,
-                                                  HOLD_REQUIRED_S, UPRIGHT_TILT_DEG,
-                                                  TrialResult)
-from tegrasp_drake.runs.grasp_outcome import (first_contact_time, grip_force_time,
-                                              grip_fraction_at, judge_grasp,
-                                              release_height_m, table_touch_time)
+from tegrasp_drake.scenario.trial_judge import judge_trial
+from tegrasp_drake.scenario.trial_result import TrialResult
 from tegrasp_drake.scenario.trial_log_writer import collect_trial_log
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.ranges import SIMULATED_DURATION
@@ -34,94 +28,10 @@ class SimulationFailedError(ConfigError):
     can ask for physics the model does not handle. One line naming the time and Drake's words."""
 
 
-RESTING_HEIGHT_M = 0.005  # back on the table: within this of its starting height
 END_MARGIN_S = 0.5  # simulated after the machine ends, to see the object settle
 CHECK_PERIOD_S = 0.25  # how often the run checks whether the machine has ended
 
 logger = logging.getLogger(__name__)
-
-
-def _event_transition(transition: Transition) -> str | None:
-    """The event-triggered transition (reach_load, ...) that `transition` is, if any."""
-    return event_transition(transition.from_mode.label, transition.to_mode.label)
-
-
-def physical_event_times(log, transitions: list[Transition], grip_force: float,
-                         object_config=None, hit_time_s: float = -1.0) -> dict:
-    """The physical event behind each event transition taken, looked for from its search
-    start (physical_event_search_starts: first contact and the grip settled after the last
-    Reach, table touch after the last Place), and "hit" when the scenario's hit came within
-    the simulated time."""
-    events = {}
-    if 0.0 <= hit_time_s <= float(log.t_slow[-1]):
-        events[HIT_EVENT] = float(hit_time_s)
-    search = {"reach_load": lambda since: first_contact_time(log, after=since),
-              "load_lift": lambda since: grip_force_time(log, grip_force, after=since),
-              "place_unload": lambda since: table_touch_time(log, object_config, after=since)}
-    for name, since in physical_event_search_starts(transitions).items():
-        events[name] = search[name](since)
-    return events
-
-
-def lift_grip_fraction(log, transitions: list[Transition], grip_force: float
-                       ) -> float | None:
-    """The weaker pad's true force at the first Load -> Lift as a fraction of the settled
-    grip (grasp_outcome.grip_fraction_at); None when the trial never lifted from Load. The
-    grip is the one settled after the last Reach before that lift, as for the Load-Lift
-    physical event (physical_event_times): a close before a Re-Reach is let go, and the grip
-    it first reached, measured while the gripper opens, can be a rub of a few tenths of a
-    newton."""
-    reach, lift = 0.0, None
-    for entry in transitions:
-        if entry.from_mode == Mode.LOAD and entry.to_mode == Mode.LIFT:
-            lift = entry.t
-            break
-        if entry.to_mode == Mode.REACH:
-            reach = entry.t
-    return None if lift is None else grip_fraction_at(log, lift, grip_force, after=reach)
-
-
-def judge_trial(log, transitions: list[Transition], scenario) -> dict:
-    """Success as in the paper (Sec. IV-C), from the ground truth: hold = lifted and held
-    at least 3 s; unload = after Unload, upright on the table, released, gripper retracted.
-    release_height_m: the object's lowest point above the table top when Unload began (the
-    first transition to Unload: the gripper's open command); None without one."""
-    outcome = judge_grasp(log, target_xy=scenario.placement.expected_xy,
-                          grip_force=scenario.grasp.grip_force, object_config=scenario.object)
-    hold_success = outcome.hold_time_s >= HOLD_REQUIRED_S
-    reached = [entry.to_mode for entry in transitions]
-    final_mode = reached[-1] if reached else Mode.REACH
-    z = log.object_state[:, 6]
-    resting = abs(z[-1] - z[0]) < RESTING_HEIGHT_M
-    unload_success = bool(hold_success and Mode.UNLOAD in reached and final_mode == Mode.DONE
-                          and outcome.final_tilt_deg < UPRIGHT_TILT_DEG and outcome.released
-                          and resting)
-    grip_force = scenario.grasp.grip_force
-    physical = physical_event_times(log, transitions, grip_force, scenario.object,
-                                    hit_time_s=scenario.disturbance.hit_time_s)
-    latency, false_triggers = {}, 0
-    for entry in transitions:
-        name = _event_transition(entry)
-        if name is None or not entry.trigger.is_event:
-            continue
-        if physical.get(name) is None or entry.t < physical[name] - FALSE_TRIGGER_MARGIN_S:
-            false_triggers += 1
-        else:
-            latency[name] = entry.t - physical[name]
-    corrective = [action for action in (corrective_action_of(e.from_mode, e.to_mode, e.trigger)
-                                        for e in transitions) if action is not None]
-    unload = next((e.t for e in transitions if e.to_mode == Mode.UNLOAD), None)
-    return {"hold_success": bool(hold_success), "unload_success": unload_success,
-            "final_mode": final_mode.label, "hold_time_s": outcome.hold_time_s,
-            "lift_height_m": outcome.lift_height_m, "final_tilt_deg": outcome.final_tilt_deg,
-            "placement_error_m": outcome.placement_error_m, "released": outcome.released,
-            "release_height_m": None if unload is None else release_height_m(
-                log, unload, scenario.object),
-            "physical_events": physical, "detection_latency_s": latency,
-            "false_triggers": false_triggers, "lift_grip_fraction": lift_grip_fraction(
-                log, transitions, grip_force),
-            "corrective_actions": corrective,
-            "failure": next((e.reason for e in transitions if e.to_mode == Mode.FAILED), "")}
 
 
 def _step(advance: Callable, context) -> None:

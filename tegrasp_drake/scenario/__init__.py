@@ -12,6 +12,8 @@ rule_reach.py: which taxel_aware rules one pad alone can fire for an object (the
 trial_log_writer.py, trial_log_file.py: the trial's loggers and its TrialLog .npz file.
 logged_channels.py: a log's channels checked against the taxels and accelerations (Eq. 1-2).
 trial_result.py: TrialResult, a trial's outcome and its JSON form (read back with the log).
+grasp_outcome.py: the ground-truth judge and the physical events' times.
+trial_judge.py: judge_trial, and a stored result checked against it (every log's reader).
 physical_event_search.py: where each event transition's physical event is searched from."""
 
 from tegrasp_drake.scenario.grasp_diagram import (AddScenarioController, GraspDiagram,

@@ -1,5 +1,5 @@
 """Where the search for each event transition's physical event starts on a trial's
-timeline: judge_trial searches from there (runs/trial.physical_event_times), and a trial
+timeline: judge_trial searches from there (trial_judge.physical_event_times), and a trial
 result's physical events may not come before it (TrialResult)."""
 
 from tegrasp_drake.control.grasp_modes import Mode

@@ -130,8 +130,11 @@ def check_trial_log_file(path: PathLike) -> None:
 
 
 @public_api
-def load_trial_log(path: PathLike) -> TrialLog:
-    """Reads a TrialLog; raises TrialLogError naming the file on any defect."""
+def load_trial_log(path: PathLike, *, rejudge: bool = True) -> TrialLog:
+    """Reads a TrialLog; raises TrialLogError naming the file on any defect, a stored result
+    other than the judge's of the log's data among them (trial_judge.stored_verdict_problem;
+    rejudge=False: not asked, for a reader that judges the log anew, as
+    analysis/rejudge_from_logs.py does after the judge changed)."""
     path = pathlib.Path(path)
     check_trial_log_file(path)
     try:
@@ -170,19 +173,23 @@ def load_trial_log(path: PathLike) -> TrialLog:
                             f"{shorten(repr(version))}, this package reads "
                             f"{FORMAT_VERSION}; run the trial again with this package to "
                             "remake it")
-    problem = trial_log_problem(meta, arrays)
+    problem = trial_log_problem(meta, arrays, rejudge=rejudge)
     if problem:
         raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
     return TrialLog(meta=meta, **arrays)
 
 
-def trial_log_problem(meta: dict, arrays: dict) -> str | None:
+def trial_log_problem(meta: dict, arrays: dict, *, rejudge: bool = True) -> str | None:
     """What is wrong with a trial log's metadata and arrays together, in words, else None:
-    its scenario, its arrays (trial_arrays_problem) and its metadata against them
-    (meta_problem). load_trial_log refuses such a log and TrialLog.save never writes one."""
+    its scenario, its arrays (trial_arrays_problem), its metadata against them
+    (meta_problem) and, with `rejudge`, its stored result against the judge's of its data
+    (stored_verdict_problem: an edited verdict). load_trial_log refuses such a log and
+    TrialLog.save never writes one."""
+    from tegrasp_drake.scenario.trial_judge import stored_verdict_problem  # Drake: on use
     scenario, problem = logged_scenario(meta)
     return (problem or trial_arrays_problem(arrays, scenario)
-            or meta_problem(meta, arrays, scenario))
+            or meta_problem(meta, arrays, scenario)
+            or (stored_verdict_problem(meta, arrays, scenario) if rejudge else None))
 
 
 def _is_time(value) -> bool:
@@ -364,7 +371,7 @@ def _hit_problem(meta: dict, arrays: dict, scenario, span: tuple[float, float]) 
     """What is wrong with the log's hit marker (meta 'events' 'hit', the figures' "hit" line)
     against its scenario's hit (disturbance.hit_time_s; negative: none) and its samples, or
     None: a hit at or after the log's start; 'events' marks the scenario's hit, and only it,
-    when it came by the last slow sample (runs/trial.physical_event_times), none otherwise (a
+    when it came by the last slow sample (trial_judge.physical_event_times), none otherwise (a
     hit after the log's end is a trial that ended first: Failed or Done)."""
     from tegrasp_drake.scenario.trial_result import HIT_EVENT
     if scenario is None:

@@ -90,7 +90,7 @@ class TrialResult:
         why="a height either side of the table top (pressed into it, or fallen past its edge), "
             "within the arm's reach")
     # The physical event behind each event transition taken, and "hit" [s]
-    # (trial.physical_event_times); None where it was not found.
+    # (trial_judge.physical_event_times); None where it was not found.
     physical_events: dict[str, float | None] = bounded(
         default_factory=dict, low=0.0, unit="s", why="simulated times since the trial's start")
     # Each event transition's time minus its physical event's [s]: either sign, since a
@@ -137,7 +137,7 @@ class TrialResult:
         self._check_relations(name)
 
     def _check_relations(self, name: str) -> None:
-        """The relations judge_trial and run_trial (runs/trial.py) guarantee: Unload is
+        """The relations judge_trial (trial_judge.py) and run_trial guarantee: Unload is
         judged only after a Hold, in a trial ending Done with the object released and upright;
         a hold succeeds exactly when held HOLD_REQUIRED_S; the final mode is the last
         transition's (_check_final_mode); the controller's (_check_controller); the failure
@@ -208,7 +208,7 @@ class TrialResult:
                 self._check_latency(name, key, latency)
 
     def _check_events(self, name: str) -> None:
-        """The physical events and latencies as judge_trial gives them (runs/trial.py): a
+        """The physical events and latencies as judge_trial gives them (trial_judge.py): a
         physical event is "hit" or one of the event transitions (REQUIRED_TRANSITIONS) the
         timeline takes, not before its search start (physical_event_search_starts); a
         latency is keyed by an event transition (REQUIRED_TRANSITIONS) and

@@ -7,7 +7,7 @@ entries carried their rule's code; the classes: docs/sweeps.md, "A sweep"."""
 from tegrasp_drake.control.controller_registry import controller_title
 from tegrasp_drake.control.corrective_actions import corrective_action_of
 from tegrasp_drake.control.grasp_modes import Mode, Trigger
-from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
+from tegrasp_drake.scenario.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.scenario.trial_result import UPRIGHT_TILT_DEG
 from tegrasp_drake.sweep.records import record_result
 

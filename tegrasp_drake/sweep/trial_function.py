@@ -104,11 +104,11 @@ def record_log_problem(log: TrialLog, record: dict) -> str | None:
     return None
 
 
-def load_record_log(path, record: dict) -> TrialLog:
+def load_record_log(path, record: dict, *, rejudge: bool = True) -> TrialLog:
     """The trial log at `path`, read for `record` (its name trial_log_name's for the record);
     TrialLogError naming the log, the record and the field when it is no log or is another
-    trial's (record_log_problem)."""
-    log = load_trial_log(path)
+    trial's (record_log_problem). rejudge: load_trial_log's."""
+    log = load_trial_log(path, rejudge=rejudge)
     problem = record_log_problem(log, record)
     if problem:
         raise TrialLogError(

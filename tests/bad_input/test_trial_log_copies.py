@@ -21,7 +21,8 @@ def test_events_other_than_its_results_physical_events_are_refused(tmp_path):
     physical = {"reach_load": 0.015, "load_lift": None}
     result = {**RESULT, "physical_events": physical}
     load_trial_log(trial_log_with(tmp_path / "same.npz", {**META, "result": result,
-                                                          "events": dict(physical)}))
+                                                          "events": dict(physical)}),
+                   rejudge=False)  # a hand-made result: the judge's own is another test's
     message = refused_log(tmp_path, {**META, "result": result,
                                      "events": {"reach_load": 0.016, "load_lift": None}})
     assert "meta 'events' gives 'reach_load' 0.016 s" in message, message

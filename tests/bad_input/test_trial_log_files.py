@@ -345,7 +345,8 @@ def test_a_trial_log_whose_controller_differs_from_its_results_is_refused(tmp_pa
     result = whole_result(controller="memorized")
     path = trial_log_with(tmp_path / "ok.npz", {"controller": "memorized", "phase_starts": {},
                                                   "result": result})
-    assert load_trial_log(path).meta["controller"] == "memorized"
+    # a hand-made result, not the judge's of the small log's data: not judged again here
+    assert load_trial_log(path, rejudge=False).meta["controller"] == "memorized"
     refused_meta(tmp_path, {"controller": "heuristic", "result": result},
                   "meta 'controller' is 'heuristic', but its 'result' is of 'memorized'")
 
@@ -356,7 +357,7 @@ def test_a_trial_log_whose_result_seed_differs_from_its_scenarios_is_refused(tmp
     trial = {"object_name": "box", "controller": "memorized"}  # the log's (META's)
     path = trial_log_with(tmp_path / "ok.npz", {"scenario": scenario, "phase_starts": {},
                                                  "result": whole_result(trial, seed=680)})
-    assert load_trial_log(path).meta["result"]["seed"] == 680
+    assert load_trial_log(path, rejudge=False).meta["result"]["seed"] == 680  # hand-made
     refused_meta(tmp_path, {"scenario": scenario, "result": whole_result(trial, seed=681)},
                   "meta 'result' is of seed 681, but its 'scenario' ran with random_seed 680")
 
@@ -427,7 +428,8 @@ def test_unknown_controllers_and_actions_are_refused(data, expected):
 
 def test_a_controller_trials_metadata_is_read(tmp_path):
     from tegrasp_drake.scenario.trial_log_file import load_trial_log
-    log = load_trial_log(trial_log_with(tmp_path / "trial.npz", META))
+    # META's result is hand-made, not the judge's of the small log's data: not judged again
+    log = load_trial_log(trial_log_with(tmp_path / "trial.npz", META), rejudge=False)
     assert log.meta["result"]["transitions"] == TIMELINE
 
 

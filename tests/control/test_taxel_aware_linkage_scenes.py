@@ -14,7 +14,8 @@ from tegrasp_drake.control.grasp_modes import Mode
 from tegrasp_drake.control.taxel_aware.contact_geometry import release_topples
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.robotiq.units import STROKE_M
-from tegrasp_drake.runs.trial import RESTING_HEIGHT_M, run_trial
+from tegrasp_drake.runs.trial import run_trial
+from tegrasp_drake.scenario.trial_judge import RESTING_HEIGHT_M
 from tegrasp_drake.scenario.rule_reach import rule_reach
 from tegrasp_drake.sweep.trial_function import trial_events
 from tests.control.taxel_aware_scenes import (Expect, Scene, check_scene,

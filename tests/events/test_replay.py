@@ -12,7 +12,7 @@ from tegrasp_drake.events import (
     tactile_trial_from_log)
 from tegrasp_drake.events.correlation import template_is_flat
 from tegrasp_drake.rig.channels import RA_CHANNELS
-from tegrasp_drake.runs.grasp_outcome import physical_events
+from tegrasp_drake.scenario.grasp_outcome import physical_events
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.scenario.scenario import LoadScenario
 

@@ -15,7 +15,7 @@ from tegrasp_drake.recording.paper_events import record_events
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
-from tegrasp_drake.runs.grasp_outcome import GRIP_FRACTION
+from tegrasp_drake.scenario.grasp_outcome import GRIP_FRACTION
 from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tests.cheap_contact import CHEAP_CONTACT

@@ -8,12 +8,13 @@ import numpy as np
 import pytest
 
 from tegrasp_drake.control.grasp_modes import Mode, Transition, Trigger
-from tegrasp_drake.runs.grasp_outcome import (GRIP_FRACTION, first_contact_time, grip_force_time,
-                                              grip_fraction_at, lifted_mask, release_height_m,
-                                              scripted_lift_start)
+from tegrasp_drake.scenario.grasp_outcome import (GRIP_FRACTION, first_contact_time,
+                                                  grip_force_time, grip_fraction_at,
+                                                  lifted_mask, release_height_m,
+                                                  scripted_lift_start)
 from tegrasp_drake.rig.objects import ObjectConfig
 from tegrasp_drake.robotiq import units as ru
-from tegrasp_drake.runs.trial import lift_grip_fraction
+from tegrasp_drake.scenario.trial_judge import lift_grip_fraction
 
 BOX = ObjectConfig(name="box", shape="box", size=[0.045, 0.045, 0.11], mass=0.15,
                    friction=0.8)

@@ -9,7 +9,7 @@ from tegrasp_drake.rig.objects import BUILTIN_OBJECTS
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
 from tegrasp_drake.robotiq import drive, linkage
 from tegrasp_drake.robotiq import units as ru
-from tegrasp_drake.runs.grasp_outcome import judge_grasp
+from tegrasp_drake.scenario.grasp_outcome import judge_grasp
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.simulation.drive_vibration import mode_gain

@@ -1,7 +1,7 @@
 """The sensitivity report's numbers from known records: misplaced held and placed per point,
 the tornado's bars, the failure classes at each end, the figure written."""
 
-from tegrasp_drake.runs.grasp_outcome import LIFTED_HEIGHT_M
+from tegrasp_drake.scenario.grasp_outcome import LIFTED_HEIGHT_M
 from tegrasp_drake.scenario.trial_result import UPRIGHT_TILT_DEG
 from tegrasp_drake.sensitivity.parameters import parameter
 from tegrasp_drake.sensitivity.report import (point_rows, tornado_bars,
