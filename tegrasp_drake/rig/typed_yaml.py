@@ -4,7 +4,8 @@ and `--set` alike), reads scalars as YAML 1.2's core schema does (core_schema_ya
 refusing duplicate keys, oversized text, alias bombs and integers past the bounded reader's
 range (integer_text.py);
 `check_fields` names the first unknown, missing, mistyped, non-finite or null field by its
-dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
+dotted path (a section written as null: refuse_null_section, which every loader uses);
+`load_typed` then builds the dataclass with `yaml_load_typed`."""
 
 import argparse
 import collections.abc
@@ -155,6 +156,26 @@ def require_known_keys(data: dict, schema, path, what: str, advice: str) -> None
     if unknown:
         raise ConfigError(f"{path}: is not {what} ({len(unknown)} of its {len(data)} top-level "
                           f"keys are not one of {', '.join(sorted(fields))}): {advice}")
+
+
+def refuse_null_section(value, source: str, path: str, *, required: bool = False) -> None:
+    """ConfigError naming `source` and the field `path` when a section (a field whose value
+    is a mapping of fields: `gripper:`, `object: null`) is written as null: neither its
+    defaults nor an error about a mapping's type, but what to do. `required`: a section
+    with no default (a transfer spec's worlds), which cannot be removed."""
+    if value is None:
+        advice = ("give its fields" if required else
+                  "give its fields, or remove the section to use the defaults")
+        raise ConfigError(f"{source}: field '{path}' is empty (null): {advice}")
+
+
+def optional_section(data: dict, name: str, source: str, absent):
+    """data[name], a section, or `absent` when it is left out; a null the user wrote is
+    refused (refuse_null_section)."""
+    if name not in data:
+        return absent
+    refuse_null_section(data[name], source, name)
+    return data[name]
 
 
 def optional_field(data: dict, name: str, source: str, absent):
@@ -506,6 +527,8 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
     package wrote (a log's or an event's scenario), whose empty "not set" fields are read as
     not set: versions before scenario_to_yaml dropped them wrote them; a user's are refused."""
     _refuse_tag(data, where, source)
+    if where:  # a section; an empty file's None is require_fields's
+        refuse_null_section(data, source, where, required=_has_required_fields(schema))
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         if not isinstance(data, dict):
@@ -549,6 +572,14 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
         if required and field.name not in data:
             path = f"{where}.{field.name}" if where else field.name
             raise ConfigError(f"{source}: field '{path}' is missing")
+
+
+def _has_required_fields(schema) -> bool:
+    """Whether a dataclass `schema` has a field with no default (a section of it cannot be
+    left out to take its defaults)."""
+    return dataclasses.is_dataclass(schema) and any(
+        field.default is dataclasses.MISSING and field.default_factory is dataclasses.MISSING
+        for field in dataclasses.fields(schema))
 
 
 class ConfigTypeError(ConfigError, TypeError):
@@ -816,6 +847,7 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False,
                                   f"{_settings_example(path)})")
             _check_value(item, element, f"{path}[{k}]", source, stored, unit)
     elif origin in (dict, collections.abc.Mapping):
+        refuse_null_section(value, source, path)
         if not isinstance(value, dict):
             raise ConfigError(f"{source}: field '{path}' must be a mapping, got "
                               f"{_describe(value)}")

@@ -6,7 +6,8 @@ from collections.abc import Collection
 from dataclasses import dataclass
 
 from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, check_fields,
-                                          read_yaml_file, require_fields, require_mapping)
+                                          read_yaml_file, refuse_null_section, require_fields,
+                                          require_mapping)
 from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
                                       USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
                                       is_number, product_grid, user_object, validate_spec)
@@ -78,6 +79,7 @@ def _offsets(values, field_name, fail) -> tuple[float, ...]:
 
 
 def _parse_grid(value, source, fail) -> tuple[tuple[float, float], ...]:
+    refuse_null_section(value, source, "grid")
     if isinstance(value, dict):
         check_fields(value, _ProductGrid, source, "grid")
         return product_grid(_offsets(value["normal_offsets_m"], "grid.normal_offsets_m", fail),

@@ -19,8 +19,9 @@ from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, settings
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, assignment_key,
-                                          check_fields, keys_overlap, optional_field,
+                                          check_fields, keys_overlap, optional_section,
                                           refuse_a_key_set_twice, read_yaml_file,
+                                          refuse_null_section,
                                           read_yaml_file_cached, require_mapping,
                                           require_fields)
 
@@ -117,7 +118,7 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
             raise ConfigError(f"{source}: field '{required}' is missing")
     worlds = _parse_worlds(data["worlds"], source)
     cells = _parse_cells(data["cells"], worlds, source)
-    sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
+    sweep = sweep_spec_from_fields(optional_section(data, "sweep", source, {}),
                                    f"{source} [sweep]")
     _check_sweep_leaves_worlds_alone(worlds, sweep, source)
     _check_a_controller_reads_events(sweep, source)
@@ -236,6 +237,7 @@ def check_matrix_size(spec: TransferSpec, source: str, confirmed: int | None = N
 
 
 def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
+    refuse_null_section(value, source, "worlds", required=True)
     if not isinstance(value, dict) or not value:
         raise ConfigError(f"{source}: field 'worlds' must map world names to "
                           "{scenario: PRESET, overrides: [...]}")
@@ -264,6 +266,7 @@ def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
 
 
 def _parse_cells(value, worlds, source: str) -> tuple[tuple[str, str], ...]:
+    refuse_null_section(value, source, "cells", required=True)
     if isinstance(value, dict):
         check_fields(value, _CellProduct, source, "cells")
         cells = [(a, b) for a in value["memorize_in"] for b in value["run_in"]]
