@@ -17,6 +17,8 @@ import typing
 from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
+from tegrasp_drake.hardware.serial_urls import (is_serial_url, serial_url_problem,
+                                                 wrapped_device)
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded, check_ranges, chosen
 from tegrasp_drake.modelgen.jaco2_dh import continuous_joints_problem
@@ -406,7 +408,9 @@ def shared_lcm_url_problem(url: str) -> str | None:
 def same_serial_line(a: str, b: str) -> bool:
     """Whether two configured ports are one line: the same name, the same file after symlinks,
     or the same character device (st_rdev, e.g. /dev/serial/by-id/... and /dev/ttyUSB0).
-    pyserial URLs (`loop://`, `socket://...`) compare by name only."""
+    pyserial URLs (`loop://`, `socket://...`) compare by name only, but spy://, which
+    wraps a device, as that device."""
+    a, b = wrapped_device(a), wrapped_device(b)
     if a == b:
         return True
     if "://" in a or "://" in b:
@@ -427,10 +431,11 @@ def serial_port_problem(port: str) -> str | None:
     folder, a file, a pipe, a block device, or a character device that is no terminal
     (/dev/null takes every command and never answers, so the device would be blamed only
     when it times out). Nothing is opened (opening some boards' ports resets them). A port
-    not there yet is opened, and named, when the devices start; a pyserial URL (`loop://`)
-    is pyserial's to check."""
-    if "://" in port:
-        return None
+    not there yet is opened, and named, when the devices start; a pyserial URL
+    (`socket://HOST:PORT`, `loop://`) is checked from its text as pyserial reads it
+    (serial_urls.py; its words say what to do)."""
+    if is_serial_url(port):
+        return serial_url_problem(port, serial_port_problem)
     try:
         mode = os.stat(port)
     except FileNotFoundError:
@@ -567,9 +572,10 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     for field, port in (("tactile.port", tactile), ("gripper.port", gripper)):
         problem = serial_port_problem(port)
         if problem:
-            raise ConfigError(
-                f"{source}: field '{prefix}{field}': {port} {problem}; give the device's "
-                "serial port (e.g. /dev/ttyUSB0, or the /dev/pts/N `tegrasp emulate` prints)")
+            advice = "" if is_serial_url(port) else (
+                "; give the device's serial port (e.g. /dev/ttyUSB0, or the /dev/pts/N "
+                "`tegrasp emulate` prints)")
+            raise ConfigError(f"{source}: field '{prefix}{field}': {port} {problem}{advice}")
     if same_serial_line(tactile, gripper):
         raise ConfigError(
             f"{source}: fields '{prefix}tactile.port' ({shown(tactile)}) and "
