@@ -359,23 +359,91 @@ class RefinedSettings(tuple):
     __slots__ = ()
 
 
-def key_set_twice(settings) -> tuple[int, int] | None:
-    """(i, k) of the first KEY=VALUE setting k of `settings` that sets the key setting i set,
-    to another value, or None: a list of settings the user wrote (--set given twice, a spec's
-    scenario_overrides, LoadScenario's overrides) may not set one key twice, as a YAML file
-    may not repeat a key: neither may silently win. A text that is no setting is skipped (its
-    own check names it); RefinedSettings are not checked."""
+class SetTwice(typing.NamedTuple):
+    """Where a list of settings sets one key twice (key_set_twice): setting `then` sets
+    `key`, which setting `first` set to another value; `dropped`: `then` is a mapping that
+    replaces the section holding `key` and leaves it out, so the earlier value would be lost
+    without a word."""
+    first: int
+    then: int
+    key: str
+    dropped: bool = False
+
+
+def _leaves(key: str, value, leaves: dict) -> None:
+    """Each dotted key a setting of `key` to `value` sets, with its value: a mapping's
+    entries (nested ones by their full dotted key), anything else the key itself."""
+    if isinstance(value, dict) and value:
+        for name, item in value.items():
+            _leaves(f"{key}.{name}", item, leaves)
+    else:
+        leaves[key] = value
+
+
+def _setting_leaves(setting: str) -> tuple[dict, str | None] | None:
+    """({dotted key: value} a KEY=VALUE setting sets, the section it replaces when its value
+    is a mapping), or None for a text that is no setting, or whose value is no YAML (its own
+    check names it)."""
+    if not isinstance(setting, str) or assignment_problem(setting):
+        return None
+    key, text = assignment_key(setting), setting.split("=", 1)[1]
+    try:
+        value = parse_yaml("value: " + text, "setting")["value"] if text.strip() else ""
+    except (ConfigError, TypeError):
+        return None
+    leaves: dict = {}
+    _leaves(key, value, leaves)
+    return leaves, key if isinstance(value, dict) else None
+
+
+def key_set_twice(settings) -> SetTwice | None:
+    """The first place a list of KEY=VALUE settings the user wrote (--set given twice, a
+    spec's scenario_overrides, LoadScenario's overrides) sets one key twice to two values,
+    or None: neither may silently win, as a YAML file may not repeat a key. A mapping value
+    sets each key it holds (`object={mass: 0.1}` sets object.mass, as `object.mass=0.1`
+    does), nested ones too, and replaces its section: a key an earlier setting set inside it
+    and the mapping leaves out is dropped (SetTwice.dropped). A key and a section holding it
+    set by two settings are one key set twice. The same value twice is no conflict. A text
+    that is no setting is skipped (its own check names it); RefinedSettings are not
+    checked."""
     if isinstance(settings, RefinedSettings):
         return None
-    first = {}
+    earlier: dict = {}  # dotted key -> (index of the first setting that set it, value)
     for k, setting in enumerate(settings):
-        if not isinstance(setting, str) or assignment_problem(setting):
+        parsed = _setting_leaves(setting)
+        if parsed is None:
             continue
-        key = assignment_key(setting)
-        if key in first and settings[first[key]] != setting:
-            return first[key], k
-        first.setdefault(key, k)
+        leaves, section = parsed
+        for key, value in leaves.items():
+            for other, (i, before) in earlier.items():
+                if other == key and before != value:
+                    return SetTwice(i, k, key)
+                if keys_overlap(other, key) and other != key and other not in leaves:
+                    refines = key.startswith(other + ".") and before == {}  # `x={}`, `x.y=1`
+                    replaced = section is not None and other.startswith(section + ".")
+                    if not refines and not replaced:  # replaced: told as dropped, below
+                        return SetTwice(i, k, min(other, key, key=len))
+        if section is not None:
+            for other, (i, _) in earlier.items():
+                if other.startswith(section + ".") and other not in leaves:
+                    return SetTwice(i, k, other, dropped=True)
+        for key, value in leaves.items():
+            earlier.setdefault(key, (k, value))
     return None
+
+
+def set_twice_words(settings, twice: SetTwice, place=None) -> str:
+    """key_set_twice's finding in words that follow what sets them ("--set ", "field
+    'x' "): "sets KEY twice ('A', then 'B'); set it once", each setting with its index when
+    `place` is true (a list in a file or an argument)."""
+    def at(k):
+        return f"{shown(settings[k])}{f' at [{k}]' if place else ''}"
+    if twice.dropped:
+        section = assignment_key(settings[twice.then])
+        return (f"sets {twice.key} twice ({at(twice.first)}, then {at(twice.then)}, which "
+                f"replaces the whole section {section} without it); set it once: in that "
+                "mapping, or after it")
+    return f"sets {twice.key} twice ({at(twice.first)}, then {at(twice.then)}); set it once"
 
 
 def refuse_a_key_set_twice(settings, source: str, path: str, kind: str = "field") -> None:
@@ -384,10 +452,7 @@ def refuse_a_key_set_twice(settings, source: str, path: str, kind: str = "field"
     two values (key_set_twice)."""
     twice = key_set_twice(settings)
     if twice:
-        i, k = twice
-        raise ConfigError(f"{source}: {kind} '{path}' sets {assignment_key(settings[k])} twice "
-                          f"({shown(settings[i])} at [{i}], then {shown(settings[k])} at "
-                          f"[{k}]); set it once")
+        raise ConfigError(f"{source}: {kind} '{path}' {set_twice_words(settings, twice, True)}")
 
 
 def set_words(assignment: str, option: str = "--set") -> str:
