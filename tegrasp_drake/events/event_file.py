@@ -251,26 +251,58 @@ def _is_number(value) -> bool:
 
 
 _KINDS = {"number": _is_number, "text": lambda v: isinstance(v, str),
-          "list": lambda v: isinstance(v, list), "object": lambda v: isinstance(v, dict)}
+          "list": lambda v: isinstance(v, list), "object": lambda v: isinstance(v, dict),
+          "list of texts": lambda v: isinstance(v, list) and all(isinstance(i, str) for i in v),
+          "object of texts": lambda v: isinstance(v, dict) and all(isinstance(i, str)
+                                                                    for i in v.values())}
 
 
-def _field(data: dict, name: str, kind: str, path, object_name):
-    """data[name], checked to be of `kind` (a key of _KINDS)."""
+def _field(data: dict, name: str, kind: str, path, object_name, prefix: str = ""):
+    """data[name], checked to be of `kind` (a key of _KINDS); a null is named as one (a
+    value the file must hold, never read as "left out"). `prefix`: the object's field path
+    in the file ("events[3].")."""
     if name not in data:
-        raise MemorizedEventError(path, f"field '{name}' is missing", object_name)
+        raise MemorizedEventError(path, f"field '{prefix}{name}' is missing", object_name)
+    article = "an" if kind[0] in "aeiou" else "a"
+    if data[name] is None:
+        raise MemorizedEventError(path, f"field '{prefix}{name}' is null, where the file must "
+                                  f"hold {article} {kind}", object_name)
     if not _KINDS[kind](data[name]):
-        article = "an" if kind == "object" else "a"
-        raise MemorizedEventError(path, f"field '{name}' is not {article} {kind}",
+        raise MemorizedEventError(path, f"field '{prefix}{name}' is not {article} {kind}",
                                   object_name)
     return data[name]
 
 
-# The fields of an event file (event_to_json), every version's (a version-1 file has no
-# object_description).
-EVENT_FIELDS = ("object", "transition", "channels", "sa_rate_hz", "ra_rate_hz", "window_s",
-                "pre_transition_s", "normalization", "scenario", "package_versions",
-                "object_description", "format", "format_version", "physical_event",
-                "transition_time_s", "samples")
+# Every file's `format` and `format_version` (a number: 3.0 reads as 3; _read_json checks
+# the values).
+FORMAT_FIELD_KINDS = {"format": "text", "format_version": "number"}
+# The fields of an event file (event_to_json) and the type of each, every version's (a
+# version-1 file has no object_description).
+EVENT_FIELD_KINDS = {
+    **FORMAT_FIELD_KINDS, "object": "text", "transition": "text", "physical_event": "text",
+    "channels": "list of texts", "sa_rate_hz": "number", "ra_rate_hz": "number",
+    "window_s": "number", "pre_transition_s": "number", "transition_time_s": "number",
+    "normalization": "text", "scenario": "text", "package_versions": "object of texts",
+    "object_description": "object", "samples": "object"}
+# The index's fields (save_memorized_events writes these, and no other) and each entry's
+# (event_summary and `file`; an entry a version-1 index kept has no object_description).
+INDEX_FIELD_KINDS = {**FORMAT_FIELD_KINDS, "remake_command": "text", "events": "list"}
+INDEX_ENTRY_KINDS = {
+    "object": "text", "transition": "text", "file": "text", "channels": "list of texts",
+    "sa_rate_hz": "number", "ra_rate_hz": "number", "window_s": "number",
+    "pre_transition_s": "number", "normalization": "text", "scenario": "text",
+    "package_versions": "object of texts", "object_description": "object"}
+
+
+def _declared_fields(data: dict, kinds: dict, which: str, path, object_name, *,
+                     optional=(), prefix: str = "") -> None:
+    """MemorizedEventError naming the first field of `data` that is not one of `kinds`
+    (`which`: what they are, in words), or one of them missing (unless `optional`), null or
+    not of its declared kind."""
+    _no_unknown_fields(data, kinds, prefix, which, path, object_name)
+    for name, kind in kinds.items():
+        if name in data or name not in optional:
+            _field(data, name, kind, path, object_name, prefix)
 
 
 def _no_unknown_fields(data: dict, known, prefix: str, which: str, path, object_name) -> None:
@@ -308,8 +340,9 @@ def read_memorized_event(path, *, object_name: str | None = None,
     data = _read_json(path, EVENT_FORMAT, object_name)
     file_object = _field(data, "object", "text", path, object_name)
     owner = object_name or file_object
-    _no_unknown_fields(data, EVENT_FIELDS, "", "a field of an event file (FORMAT.md lists "
-                       "them)", path, owner)
+    _declared_fields(data, EVENT_FIELD_KINDS, "a field of an event file (FORMAT.md lists them)",
+                     path, owner,
+                     optional=("object_description",) if data["format_version"] == 1 else ())
     numbers = {name: float(_field(data, name, "number", path, owner))
                for name in ("sa_rate_hz", "ra_rate_hz", "window_s", "pre_transition_s",
                             "transition_time_s")}
@@ -394,15 +427,18 @@ def read_index(events_dir) -> list[dict]:
     that lists no events is refused here, for every reader of it."""
     path = pathlib.Path(events_dir) / INDEX_FILE
     data = _read_json(path, INDEX_FORMAT, None)
-    entries = _field(data, "events", "list", path, None)
+    _declared_fields(data, INDEX_FIELD_KINDS, "a field of an index (FORMAT.md lists them)",
+                     path, None)
+    entries = data["events"]
     if not entries:  # no writer makes one (a save needs events): a damaged or forged index
         raise MemorizedEventError(path, "lists no events (its 'events' list is empty)")
     listed = {}  # (object, transition) and file -> the entry that listed it first
     for number, entry in enumerate(entries):
         if not isinstance(entry, dict):
             raise MemorizedEventError(path, f"entry {number} of 'events' is not an object")
-        for name in ("object", "transition", "file"):
-            _field(entry, name, "text", path, None)
+        _declared_fields(entry, INDEX_ENTRY_KINDS, "a field of an index entry (FORMAT.md "
+                         "lists them)", path, None, optional=("object_description",),
+                         prefix=f"events[{number}].")
         file = pathlib.PurePosixPath(entry["file"])
         if file.is_absolute() or ".." in file.parts:
             raise MemorizedEventError(path, f"entry {number} points outside the folder")

@@ -4,6 +4,7 @@ twin's ports plus `time_measured`, and blocking I/O lives on reader threads. The
 
 station.py: MakeHardwareStation, the devices wired to the controller's ports.
 config.py: HardwareStationConfig and LoadHardwareConfig (the `station:` tag's schema).
+serial_urls.py: the pyserial URLs a device's port may be, checked from their text.
 jaco/: the JACO2 on LCM. robotiq/: the 2F-85 on Modbus RTU. myrio/: the tactile stream.
 watchdog.py: DeviceWatchdog, which trips on a silent device.
 fault_latch.py: FaultLatch, every fault kept and the arm's stop.

@@ -17,6 +17,8 @@ import typing
 from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
+from tegrasp_drake.hardware.serial_urls import (is_serial_url, serial_url_problem,
+                                                 wrapped_device)
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded, check_ranges, chosen
 from tegrasp_drake.modelgen.jaco2_dh import continuous_joints_problem
@@ -148,6 +150,32 @@ LCM_URL_OPTIONS = {
     "tcpq": {}, "memq": {}}
 
 
+class LcmUrlAddress(typing.NamedTuple):
+    """The ADDRESS a provider's URL gives (PROVIDER://HOST[:PORT]): HOST an IPv4 literal of
+    `kind` ("multicast": a udpm:// group; "unicast": the tcpq:// server, never 0.0.0.0, a
+    multicast or broadcast address), PORT optional, a decimal integer from 1 to 65535
+    without a leading zero; `form` is how to write it, `example` one."""
+    kind: str
+    form: str
+    example: str
+
+
+# The address each provider's URL gives (LCM's lcm_udpm.c and lcm_tcpq.c). LCM 1.5.3's tcpq
+# provider never resolves a host name (it calls gethostbyname only if inet_aton returns a
+# negative number, which it never does): a name, or no host, connects to 0.0.0.0, which is
+# this host's 127.0.0.1, so only an IPv4 literal is taken. Both read the port with C's
+# strtol(base 0): `07700` as octal, `0x1e14` as hex, `7700x` as 7700.
+LCM_URL_ADDRESSES = {
+    "udpm": LcmUrlAddress("multicast", "give udpm://GROUP:PORT, e.g. "
+                          "udpm://239.255.76.67:7667?ttl=0", "udpm://239.255.76.67:7667?ttl=0"),
+    "tcpq": LcmUrlAddress("unicast", "give tcpq://HOST:PORT with HOST the lcm-tcpq server's "
+                          "IPv4 address, e.g. tcpq://127.0.0.1:7700", "tcpq://127.0.0.1:7700"),
+}
+
+
+_UDPM = LCM_URL_ADDRESSES["udpm"]
+
+
 def lcm_provider(url: str) -> str:
     """The provider `url` names (the text before "://"), or "" when it names none."""
     return url.split("://", 1)[0] if "://" in url else ""
@@ -162,18 +190,18 @@ LCM_URL_EXAMPLE = "udpm://239.255.76.67:7667?ttl=0"
 
 def lcm_url_form_problem(url: str) -> str | None:
     """Why `url` does not parse as an LCM URL, PROVIDER://ADDRESS[?OPTION=VALUE&...] (for
-    udpm://, ADDRESS an IPv4 GROUP[:PORT] and the value of each option of LCM_URL_OPTIONS a
-    decimal integer LCM reads as written: _integer_text_problem), in words that follow
-    "'URL': ", or None: a command line's --lcm-url that does not parse (exit 2). What a URL
-    that parses names (a provider, a port or option value out of range, an option) is
-    lcm_url_problem's."""
+    udpm:// and tcpq://, ADDRESS an IPv4 HOST[:PORT] (LCM_URL_ADDRESSES) and the value of
+    each option of LCM_URL_OPTIONS a decimal integer LCM reads as written:
+    _integer_text_problem), in words that follow "'URL': ", or None: a command line's
+    --lcm-url that does not parse (exit 2). What a URL that parses names (a provider, an
+    address, a port or option value out of range, an option) is lcm_url_problem's."""
     provider = lcm_provider(url)
     if not provider:
         return f"it names no provider (PROVIDER://ADDRESS); give e.g. {LCM_URL_EXAMPLE}"
-    if provider != "udpm":
+    if provider not in LCM_URL_ADDRESSES:
         return None
     address, _, query = url.split("://", 1)[1].partition("?")
-    form = f"give udpm://GROUP:PORT, e.g. {LCM_URL_EXAMPLE}"
+    form = LCM_URL_ADDRESSES[provider].form
     options = LCM_URL_OPTIONS[provider]
     for option in query.split("&") if query else ():
         key, _, value = option.partition("=")
@@ -186,8 +214,10 @@ def lcm_url_form_problem(url: str) -> str | None:
     try:
         ipaddress.IPv4Address(host)
     except ValueError:
-        if host:  # none: refused as no multicast group, by lcm_url_problem
-            return f"address {shown(host)} is not an IPv4 address; {form}"
+        if host:  # none: refused as no address, by lcm_url_problem
+            resolved = (" (LCM's tcpq:// never resolves a host name: any name would connect "
+                        "to 127.0.0.1)" if provider == "tcpq" else "")
+            return f"address {shown(host)} is not an IPv4 address{resolved}; {form}"
     problem = _integer_text_problem(port) if colon else None
     if problem:
         return f"port {shown(port)} {problem}; {form}"
@@ -243,7 +273,7 @@ def lcm_url_problem(url: str) -> str | None:
                 "udpm://239.255.76.67:7667?ttl=0")
     problem = _lcm_url_text_problem(url, provider)
     if problem:
-        return f"{problem}; expected e.g. udpm://239.255.76.67:7667?ttl=0"
+        return f"{problem}; expected e.g. {LCM_URL_ADDRESSES.get(provider, _UDPM).example}"
     import lcm
     with tempfile.TemporaryFile() as captured:
         sys.stderr.flush()
@@ -276,8 +306,8 @@ def lcm_url_problem(url: str) -> str | None:
 def _lcm_url_text_problem(url: str, provider: str) -> str | None:
     """What LCM would ignore or misread in `url`, a URL of `provider`, from its text: a query
     option the provider does not take (LCM_URL_OPTIONS) or given twice, a value outside its
-    option's range, and for udpm:// an address that is not a multicast IPv4 address with an
-    optional port from 1 to 65535. A value that is no decimal integer is
+    option's range, and for udpm:// and tcpq:// an address not of the provider's kind
+    (LCM_URL_ADDRESSES) or a port not from 1 to 65535. A value that is no decimal integer is
     lcm_url_form_problem's."""
     address, _, query = url.split("://", 1)[1].partition("?")
     accepted, seen = LCM_URL_OPTIONS[provider], set()
@@ -298,18 +328,42 @@ def _lcm_url_text_problem(url: str, provider: str) -> str | None:
         bounds = accepted[key]
         if not _decimal(value, (bounds.low, bounds.high)):
             return f"has {key}={shorten(value)}; {key} is {_option_words(bounds)}"
-    if provider != "udpm":
+    if provider not in LCM_URL_ADDRESSES:
         return None
     host, colon, port = address.partition(":")
-    try:
-        multicast = ipaddress.IPv4Address(host).is_multicast
-    except ValueError:
-        multicast = False
-    if not multicast:
-        return (f"has the address {shown(host)}, which is not a multicast IPv4 "
-                "address (224.0.0.0 to 239.255.255.255)")
+    problem = _lcm_host_problem(host, LCM_URL_ADDRESSES[provider].kind)
+    if problem:
+        return f"has {problem}"
     if colon and not _decimal(port, (1, 65535)):
         return f"has the port {shown(port)}, which is not a number from 1 to 65535"
+    return None
+
+
+def _lcm_host_problem(host: str, kind: str) -> str | None:
+    """Why `host` is no IPv4 address of `kind` (LcmUrlAddress), in words that follow "has",
+    or None."""
+    try:
+        address = ipaddress.IPv4Address(host)
+    except ValueError:
+        address = None
+    if kind == "multicast":
+        if address is None or not address.is_multicast:
+            return (f"the address {shown(host)}, which is not a multicast IPv4 address "
+                    "(224.0.0.0 to 239.255.255.255)")
+        return None
+    if address is None:
+        return ("no host (LCM would connect to 127.0.0.1): give the lcm-tcpq server's IPv4 "
+                "address") if not host else (
+                f"the address {shown(host)}, which is not an IPv4 address")
+    for test, words in ((address.is_unspecified, "the unspecified address (LCM would connect "
+                         "to this host)"),
+                        (address.is_multicast, "a multicast address"),
+                        (address == ipaddress.IPv4Address("255.255.255.255"),
+                         "the broadcast address"),
+                        (address.is_reserved, "a reserved address (240.0.0.0/4)")):
+        if test:
+            return (f"the address {shown(host)}, which is {words}, not a server's: give the "
+                    "lcm-tcpq server's IPv4 address")
     return None
 
 
@@ -354,7 +408,9 @@ def shared_lcm_url_problem(url: str) -> str | None:
 def same_serial_line(a: str, b: str) -> bool:
     """Whether two configured ports are one line: the same name, the same file after symlinks,
     or the same character device (st_rdev, e.g. /dev/serial/by-id/... and /dev/ttyUSB0).
-    pyserial URLs (`loop://`, `socket://...`) compare by name only."""
+    pyserial URLs (`loop://`, `socket://...`) compare by name only, but spy://, which
+    wraps a device, as that device."""
+    a, b = wrapped_device(a), wrapped_device(b)
     if a == b:
         return True
     if "://" in a or "://" in b:
@@ -375,10 +431,11 @@ def serial_port_problem(port: str) -> str | None:
     folder, a file, a pipe, a block device, or a character device that is no terminal
     (/dev/null takes every command and never answers, so the device would be blamed only
     when it times out). Nothing is opened (opening some boards' ports resets them). A port
-    not there yet is opened, and named, when the devices start; a pyserial URL (`loop://`)
-    is pyserial's to check."""
-    if "://" in port:
-        return None
+    not there yet is opened, and named, when the devices start; a pyserial URL
+    (`socket://HOST:PORT`, `loop://`) is checked from its text as pyserial reads it
+    (serial_urls.py; its words say what to do)."""
+    if is_serial_url(port):
+        return serial_url_problem(port, serial_port_problem)
     try:
         mode = os.stat(port)
     except FileNotFoundError:
@@ -515,9 +572,10 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
     for field, port in (("tactile.port", tactile), ("gripper.port", gripper)):
         problem = serial_port_problem(port)
         if problem:
-            raise ConfigError(
-                f"{source}: field '{prefix}{field}': {port} {problem}; give the device's "
-                "serial port (e.g. /dev/ttyUSB0, or the /dev/pts/N `tegrasp emulate` prints)")
+            advice = "" if is_serial_url(port) else (
+                "; give the device's serial port (e.g. /dev/ttyUSB0, or the /dev/pts/N "
+                "`tegrasp emulate` prints)")
+            raise ConfigError(f"{source}: field '{prefix}{field}': {port} {problem}{advice}")
     if same_serial_line(tactile, gripper):
         raise ConfigError(
             f"{source}: fields '{prefix}tactile.port' ({shown(tactile)}) and "

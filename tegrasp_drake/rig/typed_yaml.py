@@ -4,7 +4,8 @@ and `--set` alike), reads scalars as YAML 1.2's core schema does (core_schema_ya
 refusing duplicate keys, oversized text, alias bombs and integers past the bounded reader's
 range (integer_text.py);
 `check_fields` names the first unknown, missing, mistyped, non-finite or null field by its
-dotted path; `load_typed` then builds the dataclass with `yaml_load_typed`."""
+dotted path (a section written as null: refuse_null_section, which every loader uses);
+`load_typed` then builds the dataclass with `yaml_load_typed`."""
 
 import argparse
 import collections.abc
@@ -155,6 +156,26 @@ def require_known_keys(data: dict, schema, path, what: str, advice: str) -> None
     if unknown:
         raise ConfigError(f"{path}: is not {what} ({len(unknown)} of its {len(data)} top-level "
                           f"keys are not one of {', '.join(sorted(fields))}): {advice}")
+
+
+def refuse_null_section(value, source: str, path: str, *, required: bool = False) -> None:
+    """ConfigError naming `source` and the field `path` when a section (a field whose value
+    is a mapping of fields: `gripper:`, `object: null`) is written as null: neither its
+    defaults nor an error about a mapping's type, but what to do. `required`: a section
+    with no default (a transfer spec's worlds), which cannot be removed."""
+    if value is None:
+        advice = ("give its fields" if required else
+                  "give its fields, or remove the section to use the defaults")
+        raise ConfigError(f"{source}: field '{path}' is empty (null): {advice}")
+
+
+def optional_section(data: dict, name: str, source: str, absent):
+    """data[name], a section, or `absent` when it is left out; a null the user wrote is
+    refused (refuse_null_section)."""
+    if name not in data:
+        return absent
+    refuse_null_section(data[name], source, name)
+    return data[name]
 
 
 def optional_field(data: dict, name: str, source: str, absent):
@@ -338,23 +359,91 @@ class RefinedSettings(tuple):
     __slots__ = ()
 
 
-def key_set_twice(settings) -> tuple[int, int] | None:
-    """(i, k) of the first KEY=VALUE setting k of `settings` that sets the key setting i set,
-    to another value, or None: a list of settings the user wrote (--set given twice, a spec's
-    scenario_overrides, LoadScenario's overrides) may not set one key twice, as a YAML file
-    may not repeat a key: neither may silently win. A text that is no setting is skipped (its
-    own check names it); RefinedSettings are not checked."""
+class SetTwice(typing.NamedTuple):
+    """Where a list of settings sets one key twice (key_set_twice): setting `then` sets
+    `key`, which setting `first` set to another value; `dropped`: `then` is a mapping that
+    replaces the section holding `key` and leaves it out, so the earlier value would be lost
+    without a word."""
+    first: int
+    then: int
+    key: str
+    dropped: bool = False
+
+
+def _leaves(key: str, value, leaves: dict) -> None:
+    """Each dotted key a setting of `key` to `value` sets, with its value: a mapping's
+    entries (nested ones by their full dotted key), anything else the key itself."""
+    if isinstance(value, dict) and value:
+        for name, item in value.items():
+            _leaves(f"{key}.{name}", item, leaves)
+    else:
+        leaves[key] = value
+
+
+def _setting_leaves(setting: str) -> tuple[dict, str | None] | None:
+    """({dotted key: value} a KEY=VALUE setting sets, the section it replaces when its value
+    is a mapping), or None for a text that is no setting, or whose value is no YAML (its own
+    check names it)."""
+    if not isinstance(setting, str) or assignment_problem(setting):
+        return None
+    key, text = assignment_key(setting), setting.split("=", 1)[1]
+    try:
+        value = parse_yaml("value: " + text, "setting")["value"] if text.strip() else ""
+    except (ConfigError, TypeError):
+        return None
+    leaves: dict = {}
+    _leaves(key, value, leaves)
+    return leaves, key if isinstance(value, dict) else None
+
+
+def key_set_twice(settings) -> SetTwice | None:
+    """The first place a list of KEY=VALUE settings the user wrote (--set given twice, a
+    spec's scenario_overrides, LoadScenario's overrides) sets one key twice to two values,
+    or None: neither may silently win, as a YAML file may not repeat a key. A mapping value
+    sets each key it holds (`object={mass: 0.1}` sets object.mass, as `object.mass=0.1`
+    does), nested ones too, and replaces its section: a key an earlier setting set inside it
+    and the mapping leaves out is dropped (SetTwice.dropped). A key and a section holding it
+    set by two settings are one key set twice. The same value twice is no conflict. A text
+    that is no setting is skipped (its own check names it); RefinedSettings are not
+    checked."""
     if isinstance(settings, RefinedSettings):
         return None
-    first = {}
+    earlier: dict = {}  # dotted key -> (index of the first setting that set it, value)
     for k, setting in enumerate(settings):
-        if not isinstance(setting, str) or assignment_problem(setting):
+        parsed = _setting_leaves(setting)
+        if parsed is None:
             continue
-        key = assignment_key(setting)
-        if key in first and settings[first[key]] != setting:
-            return first[key], k
-        first.setdefault(key, k)
+        leaves, section = parsed
+        for key, value in leaves.items():
+            for other, (i, before) in earlier.items():
+                if other == key and before != value:
+                    return SetTwice(i, k, key)
+                if keys_overlap(other, key) and other != key and other not in leaves:
+                    refines = key.startswith(other + ".") and before == {}  # `x={}`, `x.y=1`
+                    replaced = section is not None and other.startswith(section + ".")
+                    if not refines and not replaced:  # replaced: told as dropped, below
+                        return SetTwice(i, k, min(other, key, key=len))
+        if section is not None:
+            for other, (i, _) in earlier.items():
+                if other.startswith(section + ".") and other not in leaves:
+                    return SetTwice(i, k, other, dropped=True)
+        for key, value in leaves.items():
+            earlier.setdefault(key, (k, value))
     return None
+
+
+def set_twice_words(settings, twice: SetTwice, place=None) -> str:
+    """key_set_twice's finding in words that follow what sets them ("--set ", "field
+    'x' "): "sets KEY twice ('A', then 'B'); set it once", each setting with its index when
+    `place` is true (a list in a file or an argument)."""
+    def at(k):
+        return f"{shown(settings[k])}{f' at [{k}]' if place else ''}"
+    if twice.dropped:
+        section = assignment_key(settings[twice.then])
+        return (f"sets {twice.key} twice ({at(twice.first)}, then {at(twice.then)}, which "
+                f"replaces the whole section {section} without it); set it once: in that "
+                "mapping, or after it")
+    return f"sets {twice.key} twice ({at(twice.first)}, then {at(twice.then)}); set it once"
 
 
 def refuse_a_key_set_twice(settings, source: str, path: str, kind: str = "field") -> None:
@@ -363,10 +452,7 @@ def refuse_a_key_set_twice(settings, source: str, path: str, kind: str = "field"
     two values (key_set_twice)."""
     twice = key_set_twice(settings)
     if twice:
-        i, k = twice
-        raise ConfigError(f"{source}: {kind} '{path}' sets {assignment_key(settings[k])} twice "
-                          f"({shown(settings[i])} at [{i}], then {shown(settings[k])} at "
-                          f"[{k}]); set it once")
+        raise ConfigError(f"{source}: {kind} '{path}' {set_twice_words(settings, twice, True)}")
 
 
 def set_words(assignment: str, option: str = "--set") -> str:
@@ -506,6 +592,8 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
     package wrote (a log's or an event's scenario), whose empty "not set" fields are read as
     not set: versions before scenario_to_yaml dropped them wrote them; a user's are refused."""
     _refuse_tag(data, where, source)
+    if where:  # a section; an empty file's None is require_fields's
+        refuse_null_section(data, source, where, required=_has_required_fields(schema))
     if not dataclasses.is_dataclass(schema):
         # A Drake config class: let Drake check it, but name the section.
         if not isinstance(data, dict):
@@ -549,6 +637,14 @@ def check_fields(data, schema, source: str, where: str = "", *, stored: bool = F
         if required and field.name not in data:
             path = f"{where}.{field.name}" if where else field.name
             raise ConfigError(f"{source}: field '{path}' is missing")
+
+
+def _has_required_fields(schema) -> bool:
+    """Whether a dataclass `schema` has a field with no default (a section of it cannot be
+    left out to take its defaults)."""
+    return dataclasses.is_dataclass(schema) and any(
+        field.default is dataclasses.MISSING and field.default_factory is dataclasses.MISSING
+        for field in dataclasses.fields(schema))
 
 
 class ConfigTypeError(ConfigError, TypeError):
@@ -816,6 +912,7 @@ def _check_value(value, hint, path: str, source: str, stored: bool = False,
                                   f"{_settings_example(path)})")
             _check_value(item, element, f"{path}[{k}]", source, stored, unit)
     elif origin in (dict, collections.abc.Mapping):
+        refuse_null_section(value, source, path)
         if not isinstance(value, dict):
             raise ConfigError(f"{source}: field '{path}' must be a mapping, got "
                               f"{_describe(value)}")

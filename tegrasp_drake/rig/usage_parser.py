@@ -126,12 +126,9 @@ class AppendSettings(argparse._AppendAction):
     so that a subcommand registered under any parser (argparse's own) has it."""
 
     def __call__(self, parser, namespace, values, option_string=None):
-        from tegrasp_drake.rig.echo import shown
-        from tegrasp_drake.rig.typed_yaml import assignment_key, key_set_twice
+        from tegrasp_drake.rig.typed_yaml import key_set_twice, set_twice_words
         given = [*(getattr(namespace, self.dest, None) or ()), values]
         twice = key_set_twice(given)
         if twice:
-            earlier = given[twice[0]]
-            parser.error(f"{option_string} sets {assignment_key(values)} twice "
-                         f"({shown(earlier)}, then {shown(values)}); set it once")
+            parser.error(f"{option_string} {set_twice_words(given, twice)}")
         super().__call__(parser, namespace, values, option_string)

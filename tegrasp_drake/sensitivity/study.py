@@ -13,7 +13,8 @@ from tegrasp_drake.rig.files import JSON_OBJECT_START, write_atomically
 from tegrasp_drake.rig.ranges import is_integer
 from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, keys_overlap,
-                                          optional_field, read_yaml_file, require_mapping,
+                                          optional_field, optional_section, read_yaml_file,
+                                          require_mapping,
                                           require_fields)
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, UncertainParameter,
                                                   parameter)
@@ -78,11 +79,11 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
         raise ConfigError(f"{source}: unknown field '{unknown[0]}' (fields: "
                           f"{', '.join(_FIELDS)})")
     parameters = _parse_parameters(optional_field(data, "parameters", source, None), source)
-    events = data.get("events", "each_point")
+    events = optional_field(data, "events", source, "each_point")
     if events not in EVENTS_CHOICES:
         raise ConfigError(f"{source}: field 'events' must be one of "
                           f"{', '.join(EVENTS_CHOICES)}, got {events!r}")
-    sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
+    sweep = sweep_spec_from_fields(optional_section(data, "sweep", source, {}),
                                    f"{source} [sweep]")
     swept = {assignment_key(assignment) for entry in parameters
              for value in (entry.low, entry.default, entry.high)

@@ -44,6 +44,51 @@ USER_OBJECT_FIELDS = ("shape", "size", "mass", "friction", "color")
 RENAMED_OBJECT_FIELDS = {"size_m": "size", "mass_kg": "mass",
                          "friction_coefficient": "friction"}
 
+# The most any study may make, confirmed or not: its trials are listed in memory before the
+# first runs (about 0.6 kB each at the peak, measured on 81,000 listed trials: 0.6 GB at this
+# bound, and a minute or two to list), and it is about 8,000 core-hours. Split a larger one.
+MAX_CONFIRMED_TRIALS = 1_000_000
+
+# The most entries each list of a spec holds, checked before anything is built from it
+# (check_spec_counts): a 2000 x 2000 product grid is 4 million markers, which took 33 s and
+# 0.5 GB to build and check before a refusal. The grid: a 100 x 100 grid covers the whole
+# +-0.2 m its offsets may span at 4 mm, finer than a hand sets an object. Objects: each is
+# recorded and run at every marker (the paper's 3). Settings: a scenario has fewer fields.
+MAX_GRID_MARKERS = 10_000
+MAX_SWEEP_OBJECTS = 100
+MAX_SCENARIO_OVERRIDES = 500
+SPEC_COUNTS = {"objects": (MAX_SWEEP_OBJECTS, "objects"),
+               "controllers": (len(CONTROLLER_NAMES), "controllers"),
+               "grid": (MAX_GRID_MARKERS, "markers"),
+               "user_objects": (MAX_SWEEP_OBJECTS, "objects"),
+               "scenario_overrides": (MAX_SCENARIO_OVERRIDES, "settings")}
+
+
+def check_spec_counts(counts: Mapping[str, tuple[int, str]], source: str) -> None:
+    """ConfigError "SOURCE: field 'F' holds N ITEMS (HOW); a sweep takes at most M" for the
+    first field of `counts` ({field: (count, how it was counted, "" for a list's length)})
+    past its SPEC_COUNTS maximum: a cheap check made before a spec's lists are read, built
+    or checked one by one."""
+    for field_name, (count, how) in counts.items():
+        refuse_too_many(field_name, count, *SPEC_COUNTS[field_name], source, how)
+
+
+def refuse_too_many(field_name: str, count: int, most: int, items: str, source: str,
+                    how: str = "", study: str = "sweep") -> None:
+    """ConfigError "SOURCE: field 'F' holds N ITEMS (HOW); a STUDY spec takes at most M
+    ITEMS" when `count` is past `most`: the one wording of a list past its maximum."""
+    if count > most:
+        how = f" ({how})" if how else ""
+        raise ConfigError(f"{source}: field '{field_name}' holds {count} {items}{how}; a "
+                          f"{study} takes at most {most} {items}: give fewer, or split the "
+                          f"{study} into several")
+
+
+def spec_counts(spec: "SweepSpec") -> dict[str, tuple[int, str]]:
+    """check_spec_counts's counts of a SweepSpec's lists."""
+    return {name: (len(getattr(spec, name)), "") for name in SPEC_COUNTS
+            if isinstance(getattr(spec, name), Collection)}
+
 
 def product_grid(normal_offsets_m, stroke_offsets_m) -> tuple[tuple[float, float], ...]:
     """Every (x, y) combination of the two offset lists, x (normal) varying slowest."""
@@ -91,7 +136,9 @@ class SweepSpec:
         unit="m", why="marker offsets near the centre marker, within the open hand's reach")
     # more than MAX_TRIALS with the objects, markers and controllers only when confirmed
     # (check_sweep_size)
-    attempts: int = bounded(3, low=1, below="must be a positive integer")
+    attempts: int = bounded(3, low=1, high=MAX_CONFIRMED_TRIALS,
+                            below="must be a positive integer",
+                            why=f"a sweep makes at most {MAX_CONFIRMED_TRIALS} trials")
     base_seed: int = bounded(0, **dataclasses.asdict(SEED_RANGE))
     randomisation: RandomisationConfig = field(default_factory=RandomisationConfig)
     user_objects: Mapping[str, ObjectConfig] = field(default_factory=dict)
@@ -141,7 +188,8 @@ class TrialSpec:
     marker_dx_m: float = bounded(**dataclasses.asdict(field_range(SweepSpec, "grid")))
     marker_dy_m: float = bounded(**dataclasses.asdict(field_range(SweepSpec, "grid")))
     well_placed: bool  # exactly when the marker is (0, 0)
-    attempt: int = bounded(low=0, why="attempts count from 0")
+    attempt: int = bounded(low=0, high=MAX_CONFIRMED_TRIALS - 1,
+                           why="attempts count from 0, fewer than SweepSpec.attempts' most")
     base_seed: int = bounded(**dataclasses.asdict(SEED_RANGE))
     seed: int = bounded(**dataclasses.asdict(SEED_RANGE))  # scene_seeds of the scene
     sensor_noise: bool
@@ -270,6 +318,14 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
+    check_spec_counts(spec_counts(spec), source)  # cheap checks first
+    if not spec.grid:
+        fail("grid", "is empty: a sweep needs at least one marker offset")
+    for offset in spec.grid:
+        if (not isinstance(offset, (tuple, list)) or len(offset) != 2
+                or not all(number_problem(v) is None for v in offset)):
+            fail("grid", f"marker offset {offset!r} is not a pair of finite numbers (m)")
+    check_ranges(spec, source)  # each number in the range declared on its field
     for name, config in spec.user_objects.items():
         _check_name(name, f"user_objects.{name}", fail)
         if name in builtin_objects:
@@ -284,19 +340,12 @@ def validate_spec(spec: SweepSpec, source: str = "sweep spec", *,
                  "'objects', or remove its definition")
     _check_names_in(spec.controllers, tuple(controllers), "controllers", "controller", fail)
 
-    if not spec.grid:
-        fail("grid", "is empty: a sweep needs at least one marker offset")
     seen_markers = set()
-    for offset in spec.grid:
-        if (len(offset) != 2
-                or not all(number_problem(v) is None for v in offset)):
-            fail("grid", f"marker offset {offset!r} is not a pair of finite numbers (m)")
+    for offset in spec.grid:  # in range (check_ranges): a whole number of micrometres
         key = offset_key(offset)
         if key in seen_markers:
             fail("grid", f"marker offset {offset!r} appears twice")
         seen_markers.add(key)
-
-    check_ranges(spec, source)  # each number in the range declared on its field
     if not isinstance(spec.randomisation.sensor_noise, bool):
         fail("randomisation.sensor_noise",
              f"expected true or false, got {spec.randomisation.sensor_noise!r}")
@@ -550,10 +599,7 @@ def core_hours(simulations: int) -> str:
 
 # The command-line option that confirms a study of more than MAX_TRIALS (check_study_size).
 CONFIRM_OPTION = "--confirm-trials"
-# The most any study may make, confirmed or not: its trials are listed in memory before the
-# first runs (about 0.6 kB each at the peak, measured on 81,000 listed trials: 0.6 GB at this
-# bound, and a minute or two to list), and it is about 8,000 core-hours. Split a larger one.
-MAX_CONFIRMED_TRIALS = 1_000_000
+# MAX_CONFIRMED_TRIALS (declared with the counts above): the most any study may make.
 # The count a confirmation gives: a study of at least one simulation, at most the ceiling.
 CONFIRMED_TRIALS = Range(low=1, high=MAX_CONFIRMED_TRIALS,
                          why="the count of trials and recordings the study makes; a larger "

@@ -6,10 +6,12 @@ from collections.abc import Collection
 from dataclasses import dataclass
 
 from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, check_fields,
-                                          read_yaml_file, require_fields, require_mapping)
+                                          read_yaml_file, refuse_null_section, require_fields,
+                                          require_mapping)
 from tegrasp_drake.sweep.spec import (BUILTIN_OBJECTS, CONTROLLER_NAMES, RENAMED_OBJECT_FIELDS,
-                                      USER_OBJECT_FIELDS, RandomisationConfig, SweepSpec,
-                                      is_number, product_grid, user_object, validate_spec)
+                                      SPEC_COUNTS, USER_OBJECT_FIELDS, RandomisationConfig,
+                                      SweepSpec, check_spec_counts, is_number, product_grid,
+                                      user_object, validate_spec)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api
 
 
@@ -47,6 +49,8 @@ def sweep_spec_from_fields(fields, source: str, *,
     def fail(field_name, message):
         raise ConfigError(f"{source}: field '{field_name}': {message}")
 
+    if isinstance(fields, dict):  # cheap checks first: nothing is built from a long list
+        check_spec_counts(_written_counts(fields), source)
     # The grid has two forms, a list of markers or a product grid: it is read on its own.
     has_grid = isinstance(fields, dict) and "grid" in fields
     grid = fields.pop("grid") if has_grid else None
@@ -71,6 +75,22 @@ def sweep_spec_from_fields(fields, source: str, *,
     return spec
 
 
+def _written_counts(fields: dict) -> dict[str, tuple[int, str]]:
+    """check_spec_counts's counts of a spec's lists as written: a product grid's markers
+    by its two lists' lengths, before the product is built."""
+    counts = {name: (len(fields[name]), "") for name in SPEC_COUNTS
+              if isinstance(fields.get(name), (list, dict))}
+    grid = fields.get("grid")
+    if isinstance(grid, dict):
+        normal, stroke = grid.get("normal_offsets_m"), grid.get("stroke_offsets_m")
+        if isinstance(normal, list) and isinstance(stroke, list):
+            counts["grid"] = (len(normal) * len(stroke), f"{len(normal)} normal_offsets_m x "
+                              f"{len(stroke)} stroke_offsets_m")
+        else:
+            del counts["grid"]  # its fields' types: check_fields names them
+    return counts
+
+
 def _offsets(values, field_name, fail) -> tuple[float, ...]:
     if not values:
         fail(field_name, "is empty: a sweep needs at least one marker offset")
@@ -78,6 +98,7 @@ def _offsets(values, field_name, fail) -> tuple[float, ...]:
 
 
 def _parse_grid(value, source, fail) -> tuple[tuple[float, float], ...]:
+    refuse_null_section(value, source, "grid")
     if isinstance(value, dict):
         check_fields(value, _ProductGrid, source, "grid")
         return product_grid(_offsets(value["normal_offsets_m"], "grid.normal_offsets_m", fail),

@@ -12,15 +12,17 @@ import sys
 import time
 from collections.abc import Mapping
 
-from tegrasp_drake.sweep.spec import PER_TRIAL_SCENARIO_FIELDS, SweepSpec
+from tegrasp_drake.sweep.spec import (MAX_SCENARIO_OVERRIDES, PER_TRIAL_SCENARIO_FIELDS,
+                                      SweepSpec, refuse_too_many)
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.ranges import SEED_RANGE, bounded, settings
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, assignment_key,
-                                          check_fields, keys_overlap, optional_field,
+                                          check_fields, keys_overlap, optional_section,
                                           refuse_a_key_set_twice, read_yaml_file,
+                                          refuse_null_section,
                                           read_yaml_file_cached, require_mapping,
                                           require_fields)
 
@@ -35,6 +37,11 @@ _NAME_CHARACTERS = set("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123
 # A world's name names its events folder and, twice, its cells' folders (`<m>-in-<r>`): 64
 # characters, as an object's name, keeps a cell's name within a file system's 255 bytes.
 _NAME_MAX_CHARACTERS = 64
+# The most worlds and cells a transfer spec names, counted before any is built: each world
+# records its events, each cell is a sweep; a sensitivity study's Latin hypercube is at most
+# as many worlds. Listing and checking 90,000 cells took 113 s before the bound.
+MAX_WORLDS = 1000
+MAX_CELLS = 10_000
 
 
 @dataclasses.dataclass(frozen=True)
@@ -117,7 +124,7 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
             raise ConfigError(f"{source}: field '{required}' is missing")
     worlds = _parse_worlds(data["worlds"], source)
     cells = _parse_cells(data["cells"], worlds, source)
-    sweep = sweep_spec_from_fields(optional_field(data, "sweep", source, {}),
+    sweep = sweep_spec_from_fields(optional_section(data, "sweep", source, {}),
                                    f"{source} [sweep]")
     _check_sweep_leaves_worlds_alone(worlds, sweep, source)
     _check_a_controller_reads_events(sweep, source)
@@ -235,10 +242,18 @@ def check_matrix_size(spec: TransferSpec, source: str, confirmed: int | None = N
                      "a transfer or sensitivity run, as a sweep,", source, confirmed)
 
 
+def _check_count(field_name: str, count: int, most: int, items: str, source: str,
+                 how: str = "") -> None:
+    """refuse_too_many for a transfer spec's list, checked before anything is built from it."""
+    refuse_too_many(field_name, count, most, items, source, how, study="transfer spec")
+
+
 def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
+    refuse_null_section(value, source, "worlds", required=True)
     if not isinstance(value, dict) or not value:
         raise ConfigError(f"{source}: field 'worlds' must map world names to "
                           "{scenario: PRESET, overrides: [...]}")
+    _check_count("worlds", len(value), MAX_WORLDS, "worlds", source)
     worlds = {}
     for name, fields in value.items():
         name = str(name)
@@ -249,6 +264,9 @@ def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
             raise ConfigError(f"{source}: field 'worlds.{shorten(name)}': a world's name must "
                               f"be at most {_NAME_MAX_CHARACTERS} characters (it names folders), "
                               f"got {len(name)}")
+        if isinstance(fields, dict) and isinstance(fields.get("overrides"), list):
+            _check_count(f"worlds.{name}.overrides", len(fields["overrides"]),
+                         MAX_SCENARIO_OVERRIDES, "settings", source)
         check_fields(fields, TransferWorld, source, f"worlds.{name}")
         world = TransferWorld(scenario=fields["scenario"],
                               overrides=tuple(fields.get("overrides", ())))
@@ -264,10 +282,15 @@ def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
 
 
 def _parse_cells(value, worlds, source: str) -> tuple[tuple[str, str], ...]:
+    refuse_null_section(value, source, "cells", required=True)
     if isinstance(value, dict):
         check_fields(value, _CellProduct, source, "cells")
-        cells = [(a, b) for a in value["memorize_in"] for b in value["run_in"]]
+        memorize_in, run_in = value["memorize_in"], value["run_in"]
+        _check_count("cells", len(memorize_in) * len(run_in), MAX_CELLS, "cells", source,
+                     f"{len(memorize_in)} memorize_in x {len(run_in)} run_in")
+        cells = [(a, b) for a in memorize_in for b in run_in]
     elif isinstance(value, list):
+        _check_count("cells", len(value), MAX_CELLS, "cells", source)
         cells = []
         for item in value:
             if not isinstance(item, list) or len(item) != 2:
@@ -284,7 +307,12 @@ def _parse_cells(value, worlds, source: str) -> tuple[tuple[str, str], ...]:
             if world not in worlds:
                 raise ConfigError(f"{source}: field 'cells': unknown world '{world}' "
                                   f"(worlds: {', '.join(worlds)})")
-    repeated = next((cell for k, cell in enumerate(cells) if cell in cells[:k]), None)
+    listed, repeated = set(), None
+    for cell in cells:
+        if cell in listed:
+            repeated = cell
+            break
+        listed.add(cell)
     if repeated is not None:
         raise ConfigError(f"{source}: field 'cells' lists the cell {shown(list(repeated))} "
                           "twice; list each cell once")

@@ -120,7 +120,8 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
      ["trial", "--scenario", "sc.yaml", "--scenario-name", "mine", "--set", "random_seed=1"],
      ["sc.yaml: scenario 'mine' must be a mapping of fields, got int 5"]),
     ("10 sweep --attempts 100000000", None, ["sweep", "--attempts", "100000000", "--out", "sw"],
-     ["field 'attempts'", "a sweep is at most 1000000 trials even confirmed"]),
+     ["--attempts must lie in [1, 1000000] (a sweep makes at most 1000000 trials), got "
+      "100000000"]),
     ("record-events --ensemble-runs 99", None,
      ["record-events", "--ensemble-runs", "99", "--set", "object.name=mine", *OWN_BOX],
      ["--ensemble-runs 99: give 0 (none) to 50 ideal grasps"]),

@@ -59,6 +59,13 @@ ACCEPTED_UDPM = ("which LCM's udpm:// does not take (it takes ttl, a multicast T
     ("udpm://239.255.76.99:0", ["has the port '0'"]),
     ("tcpq://127.0.0.1:7700?ttl=0", ["has the option 'ttl', which LCM's tcpq:// does not take "
                                      "(it takes none)"]),
+    ("tcpq://0.0.0.0:7700", ["has the address '0.0.0.0', which is the unspecified address",
+                             "expected e.g. tcpq://127.0.0.1:7700"]),
+    ("tcpq://239.255.76.99:7700", ["has the address '239.255.76.99', which is a multicast "
+                                   "address, not a server's"]),
+    ("tcpq://255.255.255.255:7700", ["which is the broadcast address"]),
+    ("tcpq://127.0.0.1:0", ["has the port '0', which is not a number from 1 to 65535"]),
+    ("tcpq://:7700", ["has no host (LCM would connect to 127.0.0.1)"]),
 ])
 @pytest.mark.parametrize("option", ["--lcm-url", "arm.lcm_url"])
 def test_an_lcm_url_option_or_address_lcm_would_not_take_is_refused_naming_it(
@@ -87,6 +94,8 @@ def test_an_lcm_url_option_or_address_lcm_would_not_take_is_refused_naming_it(
 # (exit 2, pointing to --help), as a config file's arm.lcm_url a file's field (exit 1). A URL
 # that parses and names a provider no bus is (nope://) stays refused as bad input (exit 1).
 FORM = "give udpm://GROUP:PORT, e.g. udpm://239.255.76.67:7667?ttl=0"
+TCPQ_FORM = ("give tcpq://HOST:PORT with HOST the lcm-tcpq server's IPv4 address, e.g. "
+             "tcpq://127.0.0.1:7700")
 
 
 @pytest.mark.parametrize("url, words", [
@@ -95,6 +104,15 @@ FORM = "give udpm://GROUP:PORT, e.g. udpm://239.255.76.67:7667?ttl=0"
     ("udpm://239.255.76.99:7699?ttl=abc", f"ttl 'abc' is not a decimal integer (ttl is a "
                                             f"multicast TTL, an integer from 0 to 255); {FORM}"),
     ("udpm://bus:7699", f"address 'bus' is not an IPv4 address; {FORM}"),
+    ("tcpq://lcm-server:7700", f"address 'lcm-server' is not an IPv4 address (LCM's tcpq:// "
+                               f"never resolves a host name: any name would connect to "
+                               f"127.0.0.1); {TCPQ_FORM}"),
+    ("tcpq://127.1:7700", f"address '127.1' is not an IPv4 address (LCM's tcpq:// never "
+                          f"resolves a host name: any name would connect to 127.0.0.1); "
+                          f"{TCPQ_FORM}"),
+    ("tcpq://127.0.0.1:07700", f"port '07700' has a leading zero (LCM would read it as "
+                               f"octal); {TCPQ_FORM}"),
+    ("tcpq://127.0.0.1:0x1e14", f"port '0x1e14' is not a decimal integer; {TCPQ_FORM}"),
     ("garbage", "it names no provider (PROVIDER://ADDRESS); give e.g. "
                 "udpm://239.255.76.67:7667?ttl=0"),
 ])
@@ -267,3 +285,41 @@ def test_the_commands_refuse_a_file_lcm_url_and_leave_the_file_whole(tmp_path, c
         assert word in text, text
     assert precious.read_text() == PRECIOUS
     assert not (tmp_path / "hw").exists()
+
+
+def _tcpq_server():
+    """A socket on 127.0.0.1 that answers LCM's tcpq handshake (the server's magic word and
+    protocol version); its port."""
+    import socket
+    import struct
+    import threading
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(8)
+
+    def serve():
+        while True:
+            try:
+                client, _ = server.accept()
+            except OSError:
+                return
+            client.recv(8)
+            client.sendall(struct.pack(">II", 0x287617fa, 0x0100))
+            client.close()
+    threading.Thread(target=serve, daemon=True).start()
+    return server
+
+
+# Rule: LCM 1.5.3's tcpq:// never resolves a host name: any name connects to 127.0.0.1. A
+# name is refused even when a server listens on this host (which LCM would silently reach),
+# and the server's IPv4 address is taken.
+def test_a_tcpq_host_name_is_refused_though_lcm_would_reach_a_local_server(capfd):
+    from tegrasp_drake.hardware.config import lcm_url_problem
+    server = _tcpq_server()
+    try:
+        port = server.getsockname()[1]
+        assert lcm_url_problem(f"tcpq://127.0.0.1:{port}") is None
+        problem = lcm_url_problem(f"tcpq://lcm-server:{port}")
+        assert problem is not None and "never resolves a host name" in problem, problem
+    finally:
+        server.close()

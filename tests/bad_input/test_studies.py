@@ -343,18 +343,21 @@ _TRANSFER = "worlds:\n  a: {scenario: faithful_world}\ncells:\n  memorize_in: [a
 def test_a_null_section_of_a_transfer_spec_is_refused(tmp_path, text, field):
     spec = tmp_path / "t.yaml"
     spec.write_text(text)
-    with pytest.raises(ConfigError, match=f"field '{field}' is null: give a value, or leave"):
+    with pytest.raises(ConfigError, match=f"field '{field}' is empty \\(null\\): give its "
+                       "fields, or remove"):
         LoadTransferSpec(spec)
 
 
-@pytest.mark.parametrize("text, field", [
-    ("parameters: [gripper.pad_friction]\nsweep: null\n", "sweep"),
-    ("parameters: null\nsweep: {objects: [box]}\n", "parameters"),
+@pytest.mark.parametrize("text, field, words", [
+    ("parameters: [gripper.pad_friction]\nsweep: null\n", "sweep",
+     "is empty \\(null\\): give its fields, or remove"),
+    ("parameters: null\nsweep: {objects: [box]}\n", "parameters",
+     "is null: give a value, or leave"),
 ], ids=["sweep", "parameters"])
-def test_a_null_section_of_a_sensitivity_spec_is_refused(tmp_path, text, field):
+def test_a_null_section_of_a_sensitivity_spec_is_refused(tmp_path, text, field, words):
     spec = tmp_path / "s.yaml"
     spec.write_text(text)
-    with pytest.raises(ConfigError, match=f"field '{field}' is null: give a value, or leave"):
+    with pytest.raises(ConfigError, match=f"field '{field}' {words}"):
         LoadSensitivitySpec(spec)
 
 
