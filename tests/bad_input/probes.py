@@ -37,6 +37,7 @@ from tegrasp_drake.sweep.records import _checksum, record_path
 from tegrasp_drake.sweep.runner import run_sweep
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tests.fake_trials import fake_trial, whole_result
+from tests.trial_log_contents import edit_trial_log, write_trial_log_contents
 
 
 def run_cli(argv, capfd) -> tuple[int, str]:
@@ -118,9 +119,8 @@ def trial_log(path, **changes):
             pass
     # every trial log names its controller (trial_log_file.REQUIRED_META_FIELDS): the
     # default scenario's
-    meta = json.dumps({"format_version": FORMAT_VERSION, "controller": "memorized"})
-    np.savez_compressed(path, meta=np.array(meta), **arrays)
-    return path
+    meta = {"format_version": FORMAT_VERSION, "controller": "memorized"}
+    return write_trial_log_contents(path, {"meta": meta, **arrays})
 
 
 def memorized_events(object_name="mine", sa_rate_hz=108.0, seed=0):
@@ -175,12 +175,7 @@ def trial_log_with(path, meta=None, **arrays):
         except (TypeError, ValueError, KeyError, AttributeError):  # a probe's malformed meta
             pass
     trial_log(path, **arrays)
-    with np.load(path) as data:
-        contents = {name: data[name] for name in data.files}
-    contents["meta"] = np.array(json.dumps({**json.loads(str(contents["meta"])),
-                                            **(meta or {})}))
-    np.savez_compressed(path, **contents)
-    return path
+    return edit_trial_log(path, path, lambda stored: stored.update(meta or {}))
 
 SEED = 604
 
