@@ -450,3 +450,39 @@ def wait_for(condition, what):
 
 SEEDED_SWEEP = ("sweep: {controllers: [memorized], attempts: 1, objects: [box], "
                 "grid: [[0.0, 0.0]], base_seed: 640}\n")
+
+
+def earlier_run_of(folder, *names):
+    """`folder` holding an earlier run as a run leaves it: trial.npz (a small trial log with
+    its result and checksum: META's), each of `names` a real figure (save_figure) and
+    result.json, the log's result recording them under the result's fields."""
+    from tegrasp_drake.figures.figure_files import new_figure, save_figure
+    from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_KEYS
+    folder.mkdir(parents=True, exist_ok=True)
+    result = earlier_result_of(folder)
+    trial_log_with(folder / "trial.npz", META)
+    for name in names:
+        save_figure(new_figure(1, 1), folder / name)
+        result[TRIAL_FIGURE_KEYS[name.split(".")[0]]] = str(folder / name)
+    (folder / "result.json").write_text(json.dumps(result))
+    return folder
+
+
+
+
+def earlier_result_of(folder) -> dict:
+    """The result.json an earlier run into `folder` wrote, of the log earlier_run_of writes
+    (META's result, naming the folder's trial.npz as its log)."""
+    return {**META["result"], "log": str(folder / "trial.npz"),
+            "result": str(folder / "result.json")}
+
+
+def earlier_run_file(folder, name: str):
+    """`folder` holding one file of an earlier run (earlier_run_of's trial.npz or its
+    result.json), as a run left it."""
+    folder.mkdir(parents=True, exist_ok=True)
+    if name == "trial.npz":
+        trial_log_with(folder / name, META)
+    else:
+        (folder / name).write_text(json.dumps(earlier_result_of(folder)))
+    return folder
