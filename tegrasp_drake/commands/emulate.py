@@ -196,7 +196,8 @@ def run(args) -> int:
     if "myrio" in devices:
         from tegrasp_drake.emulators.myrio_emulator import load_tactile_recording
         try:
-            load_tactile_recording(args.trial)  # checked before the process is raised
+            # checked before the process is raised; a trial log, never a bare recording
+            load_tactile_recording(args.trial, bare=False)
         except TactileRecordingError as e:
             raise SystemExit(f"tegrasp: error: {e}") from None
     sync = args.sync or ("follow" if args.device == "all" else "none")

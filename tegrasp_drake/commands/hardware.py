@@ -305,7 +305,8 @@ HARDWARE_RESULT_MAX_BYTES = 16 * 1024 * 1024  # a run's result: its transitions 
 def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
     """Why --overwrite may not replace `path`, in words that follow it, or None: the earlier
     file must be what a hardware run writes there, an LCM log (empty, or starting with
-    LCM_LOG_START) or a run's result (a JSON object with HARDWARE_RESULT_KEYS); the user's
+    LCM_LOG_START, and its result beside it naming it: an LCM log the user recorded otherwise
+    is theirs) or a run's result (a JSON object with HARDWARE_RESULT_KEYS); the user's
     notes saved under a run's name are not replaced. Only the log's head is read."""
     from tegrasp_drake.rig.files import JsonFileError, read_json_file
     from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
@@ -319,6 +320,12 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
             return f"cannot be read to check what it is ({error.strerror or error}); {remedy}"
         if head and head != LCM_LOG_START:
             return f"exists and is not an LCM log (its first bytes are not LCM's); {remedy}"
+        beside = result_path_beside_log(path)
+        unread = os.path.lexists(beside) and earlier_run_file_problem(beside, is_log=False)
+        if head and not unread and not _names_log(beside, path):  # unread: said of `beside`
+            # an LCM log of the user's (lcm-logger's), not a run's: no run's result names it
+            return (f"exists and is an LCM log of no earlier run (no {beside.name} beside it "
+                    f"names it as its log: a run writes both); {remedy}")
         return None
 
     def not_a_result(data) -> str | None:
@@ -332,6 +339,20 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
     except JsonFileError as error:
         return f"exists and {error.problem}; {remedy}"
     return None
+
+
+def _names_log(result_path, log) -> bool:
+    """Whether a hardware run's result is at `result_path` naming `log` as its log (by its
+    name: the folder may have been moved since): what tells an earlier run's log from an LCM
+    log of the user's."""
+    from tegrasp_drake.rig.files import JsonFileError, read_json_file
+    try:
+        data = read_json_file(result_path, limit=HARDWARE_RESULT_MAX_BYTES,
+                              kind="a hardware run's result")
+    except JsonFileError:  # missing or unreadable: no run's
+        return False
+    logged = data.get("log") if isinstance(data, dict) else None
+    return isinstance(logged, str) and pathlib.PurePath(logged).name == pathlib.Path(log).name
 
 
 def _run_holding_log(args, scenario, config, events, corrective, log, result_path) -> int:

@@ -139,7 +139,8 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
             raise RunFolderError(
                 f"--out {folder}: {name} {problem.split(';')[0]}, where the run writes its "
                 f"{name}; remove it yourself, or give another --out")
-    problem = (out is not None or replace_default) and foreign_figure_problem(folder)
+    problem = (out is not None or replace_default) and (
+        foreign_run_file_problem(folder) or foreign_figure_problem(folder))
     if problem:
         raise RunFolderError(problem)
     if out is not None and holds_run(folder) and not overwrite:
@@ -377,6 +378,55 @@ def foreign_figure_problem(folder) -> str | None:
                f"is not a figure of the run there (its {RESULT_FILE} does not list it)")
         return (f"--out {folder}: {name} {why}, and a run writes or removes its {name}; move "
                 "it out of the folder, or give another --out")
+    return None
+
+
+def foreign_run_file_problem(folder) -> str | None:
+    """Why a run may not be written into `folder`, or None: its trial.npz or result.json (a
+    regular file under a run's own name, which a run replaces) is not an earlier run's:
+    trial.npz must be a trial log as TrialLog.save wrote it (written_trial_log: of this
+    format, its checksum that of what it holds), result.json a trial's result (TrialResult's
+    JSON form) naming trial.npz as its log and, beside a log, that log's own result. Asked
+    before the run simulates, as foreign_figure_problem is for the figures."""
+    from tegrasp_drake.scenario.trial_log_file import TrialLogError, written_trial_log
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    folder = pathlib.Path(folder)
+    log_name = RUN_FILES[1]
+
+    def refusal(name: str, why: str) -> str:
+        return (f"--out {folder}: {name} {why}, and a run replaces its {name}; move it out of "
+                "the folder, or give another --out")
+
+    def own(path: pathlib.Path) -> bool:  # links and non-files: choose_run_folder's
+        return path.is_file() and not path.is_symlink()
+    logged_result = None
+    if own(folder / log_name):
+        try:
+            logged_result = written_trial_log(folder / log_name)[0].get("result")
+        except TrialLogError as error:
+            reason = str(error).removeprefix(f"trial log '{folder / log_name}'").lstrip(": ")
+            reason = reason.split("; run the trial again")[0]
+            return refusal(log_name, f"is not a trial log a run wrote ({reason})")
+    if not own(folder / RESULT_FILE):
+        return None
+    try:
+        data = load_json(read_bounded(folder / RESULT_FILE, MAX_RESULT_BYTES,
+                                      devices=()).decode("utf-8"))
+        TrialResult.from_dict(data)
+    except (OSError, ValueError, TypeError, RecursionError) as error:
+        reason = error.strerror if isinstance(error, OSError) else str(error)
+        reason = reason.removeprefix("not a trial result's JSON form: ").split("; give")[0]
+        return refusal(RESULT_FILE, f"is not a trial's result ({reason})")
+    logged = data.get("log")
+    if not isinstance(logged, str) or pathlib.PurePath(logged).name != log_name:
+        named = shown(logged) if isinstance(logged, str) else logged
+        return refusal(RESULT_FILE, f"is a result whose log is {named}, not a run's {log_name}")
+    if isinstance(logged_result, dict):
+        differs = next((key for key, value in logged_result.items()
+                        if data.get(key, "absent") != value), None)
+        if differs is not None:
+            return refusal(RESULT_FILE, f"is not the result of the {log_name} beside it (their "
+                                        f"'{differs}' differ)")
     return None
 
 

@@ -59,10 +59,20 @@ class TactileRecordingError(ValueError):
         super().__init__(one_line(message))
 
 
-def load_tactile_recording(path) -> TactileRecording:
+# The arrays of a bare recording (save_tactile_recording): a trial log's pad signals and
+# gripper commands, and no metadata.
+RECORDING_ARRAYS = ("t_sa", "taxels", "t_ra", "pad_acceleration")
+RECORDING_OPTIONAL_ARRAYS = ("t_slow", "gripper_command")
+
+
+def load_tactile_recording(path, *, bare: bool = True) -> TactileRecording:
     """The pad signals of a TrialLog .npz (left then right) and the gripper's position
-    requests when present; a bare recording (save_tactile_recording) is checked alike."""
-    wanted = ("t_sa", "taxels", "t_ra", "pad_acceleration")
+    requests when present, the log read whole (load_trial_log: its checksum among the rest).
+    A bare recording (what save_tactile_recording writes: RECORDING_ARRAYS and
+    RECORDING_OPTIONAL_ARRAYS, no metadata) is checked alike when `bare` (refused otherwise:
+    `tegrasp emulate --trial` replays trial logs); a file holding more of a trial log's arrays
+    but no metadata, a trial log stripped of its metadata and checksum, never is."""
+    wanted = RECORDING_ARRAYS
     try:
         check_trial_log_file(path)
     except TrialLogError as e:
@@ -80,7 +90,9 @@ def load_tactile_recording(path) -> TactileRecording:
             log = load_trial_log(path)
         except TrialLogError as e:
             raise TactileRecordingError(str(e)) from None
-        arrays = {name: getattr(log, name) for name in (*wanted, "t_slow", "gripper_command")}
+        arrays = {name: getattr(log, name) for name in (*wanted, *RECORDING_OPTIONAL_ARRAYS)}
+    else:
+        _refuse_bare_recording(path, bare)
     t_sa, taxels = arrays["t_sa"], arrays["taxels"]
     t_ra, acceleration = arrays["t_ra"], arrays["pad_acceleration"]
     problem = trial_arrays_problem(arrays)
@@ -91,6 +103,27 @@ def load_tactile_recording(path) -> TactileRecording:
     return TactileRecording(t_sa, taxels[:, :TAXELS_PER_PAD], taxels[:, TAXELS_PER_PAD:],
                             t_ra, acceleration[:, :3], acceleration[:, 3:],
                             gripper_times, gripper_requests)
+
+
+def _refuse_bare_recording(path, bare: bool) -> None:
+    """TactileRecordingError naming `path`, a file holding no trial metadata, unless it is a
+    bare recording (only RECORDING_ARRAYS and RECORDING_OPTIONAL_ARRAYS) and `bare` allows
+    one: a trial log's other arrays without its metadata are a log whose checksum was
+    removed with it, so what it holds cannot be told from an edit."""
+    with zipfile.ZipFile(path) as archive:  # its directory bounded by checked_npz_arrays
+        members = [name.removesuffix(".npy") for name in archive.namelist()]
+    log_only = [name for name in ARRAY_FIELDS if name in members
+                and name not in (*RECORDING_ARRAYS, *RECORDING_OPTIONAL_ARRAYS)]
+    if log_only:
+        raise TactileRecordingError(
+            f"'{path}' holds a trial log's arrays ({', '.join(log_only)}) but not its metadata "
+            "('meta', with the checksum that shows the log is as its trial wrote it); give "
+            "the trial.npz as `tegrasp trial` wrote it, or run the trial again")
+    if not bare:
+        raise TactileRecordingError(
+            f"'{path}' holds no trial metadata ('meta'), so it is not a trial log; give a "
+            "trial.npz that `tegrasp trial --out DIR` (DIR/trial.npz) or `tegrasp demo` "
+            "(out/demo/trial.npz) wrote")
 
 
 def _gripper_requests(path, arrays) -> tuple:

@@ -413,6 +413,131 @@ def recorded_file_problem(path, expected_format: str) -> str | None:
     return f"is not a '{expected_format}' file {RECORD_COMMAND} wrote"
 
 
+# A file the package keeps in an events folder beside the events: a transfer world's settings,
+# written before its events are recorded (transfer/matrix.py).
+WORLD_FILE = "world.json"
+# [entries] How many of a folder's entries events_folder_contents looks at: a recording's
+# folder holds the index, a world's file and a folder per object; a folder of more
+# without an index is no events folder whatever the rest holds.
+MAX_FOLDER_ENTRIES = 1000
+
+
+def events_folder_contents(events_dir) -> tuple[str, str | None]:
+    """What a folder given for events holds, (kind, an entry's name or None), its entries
+    looked at, not read: "index" (it holds one, or one of its EVENTS_SUBFOLDERS does:
+    read_index judges it), "none" (nothing is
+    there, or no entry but hidden ones: no events yet), "unfinished" (no index, only what
+    a recording writes before its index, last: object folders of event files and staging
+    files, an events subfolder of the same, a world's settings; the name of an object
+    folder, or None), "other" (no index but another file: the name of the first) or
+    "unreadable" (its error's words)."""
+    from tegrasp_drake.rig.files import is_staging_name
+    from tegrasp_drake.rig.objects import EVENTS_SUBFOLDERS
+    folder = pathlib.Path(events_dir)
+    if has_index(folder) or any(has_index(folder / sub) for sub in EVENTS_SUBFOLDERS):
+        return "index", None
+    if not folder.is_dir():
+        return "none", None
+    try:
+        with os.scandir(folder) as scan:
+            entries = [entry for _, entry in zip(range(MAX_FOLDER_ENTRIES + 1), scan)]
+    except OSError as error:
+        return "unreadable", error.strerror or str(error)
+    objects = []
+    shown_entries = sorted((entry for entry in entries  # hidden ones: staging files
+                            if not entry.name.startswith(".") and entry.name != WORLD_FILE),
+                           key=lambda e: (e.is_dir(follow_symlinks=False), e.name))
+    for entry in shown_entries:  # files first: the first named is the plainest
+        name = entry.name
+        if len(entries) > MAX_FOLDER_ENTRIES or not entry.is_dir(follow_symlinks=False):
+            return "other", name
+        if name in EVENTS_SUBFOLDERS:
+            kind, found = events_folder_contents(entry.path)
+            if kind in ("other", "unreadable"):
+                return kind, f"{name}/{found}" if kind == "other" else found
+            continue
+        if object_name_problem(name) is not None:
+            return "other", name
+        most = len(TRANSITIONS) * 4  # its event files, and a killed save's staging files
+        try:
+            with os.scandir(entry.path) as scan:
+                inside = sorted(e.name for _, e in zip(range(most + 1), scan))
+        except OSError as error:
+            return "unreadable", error.strerror or str(error)
+        if len(inside) > most:
+            return "other", name
+        for file in inside:
+            path = pathlib.Path(entry.path) / file
+            if not (is_staging_name(file) or (
+                    file.removesuffix(".json") in TRANSITIONS and file.endswith(".json")
+                    and recorded_file_problem(path, EVENT_FORMAT) is None)):
+                return "other", f"{name}/{file}"
+        objects.append(name)
+    return ("unfinished", objects[0] if objects else None) if objects else ("none", None)
+
+
+def events_folder_problem(events_dir, *, writing: bool, remedy: str | None = None) -> str | None:
+    """Why `events_dir` cannot be read as an events folder (writing=False) or recorded into
+    (writing=True), in words that follow its path, with what to do (`remedy`, else what a
+    reader or writer is given instead); None when it can (or, for a reader, when it holds an
+    index, which read_index judges, or nothing yet). The one check of a folder's contents: a
+    folder holding no index but other files is no events folder, neither read (its events
+    would be "missing") nor written (the recording's files would mix with the user's); what a
+    recording stopped before its index left is recorded into again, and a reader says so
+    (events_folder_contents)."""
+    from tegrasp_drake.rig.echo import shown
+    kind, found = events_folder_contents(events_dir)
+    if kind == "other":
+        remedy = remedy or (
+            "give a new or empty folder, or your events folder (the one holding "
+            f"{INDEX_FILE})" if writing else f"give the folder `{RECORD_COMMAND}` wrote (it "
+            f"holds {INDEX_FILE} and a folder per object)")
+        return (f"is not an events folder: it holds no {INDEX_FILE} but other files (e.g. "
+                f"{shown(found)}); {remedy}")
+    if kind == "unreadable":
+        return f"cannot be read ({found}); {remedy or 'give a folder you can read'}"
+    if kind == "unfinished" and not writing:
+        return (f"holds event files ({found}/...) but no {INDEX_FILE} listing them: a "
+                f"recording stopped before it wrote its index; "
+                f"{record_again_advice(found, events_dir)}" + (f"; or {remedy}" if remedy else ""))
+    return None
+
+
+def record_again_advice(object_name: str, events_dir) -> str:
+    """What to do with `object_name`'s event files a stopped recording left in `events_dir`:
+    record them again into that folder, with the options remake_advice names for the object."""
+    if object_name in BUILTIN_OBJECTS:
+        return (f"record them again (`{RECORD_COMMAND} --object {object_name} --events "
+                f"{events_dir}`)")
+    return f"record them again with --events {events_dir}: {remake_advice(object_name)}"
+
+
+class NotAnEventsFolderError(MemorizedEventError):
+    """A folder given for events holds no index but other files, or only what a stopped
+    recording left (events_folder_problem); the message names it and says what to do."""
+
+    def __init__(self, events_dir, problem: str):
+        super().__init__(events_dir, problem)
+        self.args = (error_line(f"{self.path} {problem}"),)
+
+
+def refuse_unusable_events_folder(events_dir) -> None:
+    """NotAnEventsFolderError for a folder a reader cannot take (events_folder_problem)."""
+    problem = events_folder_problem(events_dir, writing=False)
+    if problem:
+        raise NotAnEventsFolderError(events_dir, problem)
+
+
+def unlisted_event_files(events_dir, object_name: str) -> list[str]:
+    """The event files of `object_name` in `events_dir` (its folder's `<transition>.json`)
+    written by a recording that stopped before its index entry: asked when the index lists
+    no such object."""
+    folder = pathlib.Path(events_dir) / object_name
+    if object_name_problem(object_name) is not None or not folder.is_dir():
+        return []
+    return [f"{object_name}/{t}.json" for t in TRANSITIONS if (folder / f"{t}.json").is_file()]
+
+
 def has_index(events_dir) -> bool:
     """True when anything is at the folder's index path: a file, and as well a pipe, a folder,
     a device or a symlink that loops or leads nowhere, which read_index then refuses by name.
@@ -426,6 +551,8 @@ def read_index(events_dir) -> list[dict]:
     """The index's entries (object, transition, file and the events' metadata); an index
     that lists no events is refused here, for every reader of it."""
     path = pathlib.Path(events_dir) / INDEX_FILE
+    if not has_index(events_dir):  # a folder of other files, or a stopped recording's
+        refuse_unusable_events_folder(events_dir)
     data = _read_json(path, INDEX_FORMAT, None)
     _declared_fields(data, INDEX_FIELD_KINDS, "a field of an index (FORMAT.md lists them)",
                      path, None)

@@ -16,8 +16,10 @@ from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.events.event_file import (
     EVENT_FORMAT, FORMAT_VERSION, INDEX_FILE, INDEX_FORMAT, RECORD_COMMAND, MemorizedEventError,
-    remake_advice, event_json_text, event_problem, event_summary, event_to_json, has_index,
-    read_index, read_memorized_event, recorded_file_problem)
+    NotAnEventsFolderError, remake_advice, event_json_text, event_problem, event_summary,
+    event_to_json, events_folder_problem, has_index, read_index, read_memorized_event,
+    record_again_advice, recorded_file_problem, refuse_unusable_events_folder,
+    unlisted_event_files)
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.one_grasp import object_events_problem
 from tegrasp_drake.events.transitions import (REQUIRED_TRANSITIONS, TRANSITIONS,
@@ -41,7 +43,9 @@ def check_events_destination(events_dir, object_names: Iterable[str], *,
     objects' entries are kept, an index that reads; and no file there that the recording
     did not write (recorded_file_problem): a save replaces an object's event files and the
     index, and removes the object's event files it does not write again, so a file of the
-    user's at one of those paths would be lost. Asked before recording and by the save."""
+    user's at one of those paths would be lost; and a folder that holds no index but other
+    files (events_folder_problem, the readers' check too) is not one. Asked before recording
+    and by the save."""
     events_dir = pathlib.Path(events_dir)
     index = events_dir / INDEX_FILE
     targets = [(index, INDEX_FORMAT)] + [
@@ -57,6 +61,9 @@ def check_events_destination(events_dir, object_names: Iterable[str], *,
             raise EventsDestinationError(
                 f"{path} {problem}, and the recording writes or removes a file there; move it "
                 "out of the folder, or give another events folder")
+    problem = events_folder_problem(events_dir, writing=True)  # the readers' one check
+    if problem:
+        raise EventsDestinationError(f"{events_dir} {problem}")
     if keep_other_objects and os.path.lexists(index):
         try:
             read_index(events_dir)
@@ -253,6 +260,7 @@ def load_memorized_events(events_dir: PathLike, object_name: str, *,
     events_dir = pathlib.Path(events_dir)
     entries = [e for e in read_index(events_dir) if e["object"] == object_name]
     if not entries:
+        _refuse_unlisted_events(events_dir, object_name)
         objects = sorted({e["object"] for e in read_index(events_dir)})
         raise MemorizedEventError(
             events_dir / INDEX_FILE,
@@ -272,11 +280,35 @@ def load_memorized_events(events_dir: PathLike, object_name: str, *,
     return {event.transition: event for event in events}
 
 
+def _refuse_unlisted_events(events_dir: pathlib.Path, object_name: str) -> None:
+    """NotAnEventsFolderError when `events_dir`, whose index lists no `object_name`, holds its
+    event files (unlisted_event_files): a recording of it stopped before it wrote the index,
+    so neither "no events" nor another folder's events of it are what the user recorded."""
+    files = unlisted_event_files(events_dir, object_name)
+    if files:
+        raise NotAnEventsFolderError(
+            events_dir, f"holds event files of '{object_name}' ({', '.join(files)}) that its "
+            f"{INDEX_FILE} does not list: a recording stopped before it wrote the index; "
+            f"{record_again_advice(object_name, events_dir)}")
+
+
+def _passed_over(folder: pathlib.Path, object_name: str) -> bool:
+    """Whether a reader looking for `object_name`'s events in several folders passes over
+    `folder`: it holds nothing yet (no index); one of other files, or with what a stopped
+    recording left, is refused (events_folder_problem, _refuse_unlisted_events)."""
+    if not has_index(folder):
+        refuse_unusable_events_folder(folder)
+        return True
+    if any(e["object"] == object_name for e in read_index(folder)):
+        return False
+    _refuse_unlisted_events(folder, object_name)
+    return True
+
+
 def events_folder_of(folders, object_name: str) -> pathlib.Path | None:
     """The first of `folders` whose index lists `object_name` (None if none does)."""
     for folder in map(pathlib.Path, folders):
-        if has_index(folder) and any(
-                e["object"] == object_name for e in read_index(folder)):
+        if not _passed_over(folder, object_name):
             return folder
     return None
 
@@ -289,11 +321,11 @@ def find_memorized_events(folders, object_name: str, *,
     folders = [pathlib.Path(f) for f in folders]
     looked = []
     for folder in folders:
+        if not _passed_over(folder, object_name):
+            return folder, load_memorized_events(folder, object_name, required=required)
         if not has_index(folder):
             looked.append(f"{folder} (no {INDEX_FILE})")
             continue
-        if any(e["object"] == object_name for e in read_index(folder)):
-            return folder, load_memorized_events(folder, object_name, required=required)
         objects = sorted({e["object"] for e in read_index(folder)})
         looked.append(f"{folder} (has {', '.join(objects) or 'none'})")
     error = MemorizedEventError(folders[0] / INDEX_FILE if folders else INDEX_FILE,

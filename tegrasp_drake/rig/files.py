@@ -62,6 +62,11 @@ _STAGING_NAME = re.compile(r"\.(?P<rest>.+)\.(?P<pid>[1-9][0-9]{0,9})\.staging",
 _RANDOM_PART = re.compile(r"\.[a-z0-9_]{8}")
 
 
+def is_staging_name(name: str) -> bool:
+    """Whether `name` is a staging file's (`.NAME.PID.staging`, staged_file's or a writer's)."""
+    return _STAGING_NAME.fullmatch(name) is not None
+
+
 def own_staging_suffix() -> str:
     """The suffix of this process's staging files (`.PID.staging`)."""
     return f".{os.getpid()}.staging"
@@ -301,7 +306,8 @@ def folder_problem(path) -> str | None:
     try:
         os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
     except OSError as e:
-        return f"{place} is not writable ({e.strerror or e})"
+        return (f"{place} cannot be written in: making a folder there failed "
+                f"({e.strerror or e})")
     return None
 
 

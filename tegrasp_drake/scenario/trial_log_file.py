@@ -7,9 +7,11 @@ Arrays (times in s, simulation clock):
   gripper_status (K, 8), phase (K,) [the Mode value, an index into `mode_names`; an ideal
   grasp's: an index into `phases`], object_state (K, 13)
 Metadata (JSON in `meta`): format version, scenario YAML, phase names, phase start times,
-physical event times, controller name, package versions."""
+physical event times, controller name, package versions, and the checksum of all of it
+(trial_log_checksum): a log edited after it was written is refused."""
 
 import dataclasses
+import hashlib
 import json
 import math
 import os
@@ -72,11 +74,14 @@ class TrialLog:
         channels that are not Eq. 1-2 of the taxels and accelerations, metadata that
         disagrees with them): what the one reader refuses is never written."""
         path = pathlib.Path(path)
-        meta = dict(self.meta, format_version=FORMAT_VERSION)
-        arrays = {name: getattr(self, name) for name in ARRAY_FIELDS}
+        meta = {key: value for key, value in self.meta.items() if key != CHECKSUM_FIELD}
+        meta["format_version"] = FORMAT_VERSION
+        arrays = {name: np.asanyarray(getattr(self, name)) for name in ARRAY_FIELDS}
         problem = trial_log_problem(meta, arrays)
         if problem:
             raise TrialLogError(f"TrialLog.save: '{path}' not written: {problem}")
+        # The checksum of the metadata as a reader parses it back (tuples read as lists).
+        meta[CHECKSUM_FIELD] = trial_log_checksum(json.loads(json.dumps(meta)), arrays)
         path.parent.mkdir(parents=True, exist_ok=True)
         with (temporary_sibling(path, start=NPZ_START) as temporary,
               open(temporary, "wb") as f):
@@ -93,6 +98,42 @@ class TrialLog:
     @property
     def ra(self) -> np.ndarray:
         return self.channels[:, 2:]
+
+
+CHECKSUM_FIELD = "checksum"
+
+
+def trial_log_checksum(meta: dict, arrays: dict) -> str:
+    """The SHA-256 (hex) of a trial log's contents: its metadata without CHECKSUM_FIELD as
+    canonical JSON (keys sorted, no spaces, ASCII), then each array of ARRAY_FIELDS in that
+    order, its name, dtype, shape and bytes (C order). TrialLog.save stores it as meta
+    'checksum'; load_trial_log refuses a log whose contents give another."""
+    digest = hashlib.sha256()
+    body = {key: value for key, value in meta.items() if key != CHECKSUM_FIELD}
+    digest.update(json.dumps(body, sort_keys=True, separators=(",", ":"),
+                             ensure_ascii=True).encode("ascii"))
+    for name in ARRAY_FIELDS:
+        array = np.asanyarray(arrays[name])
+        digest.update(f"\0{name}\0{array.dtype.str}\0{array.shape}\0".encode("ascii"))
+        contiguous = np.ascontiguousarray(array)  # its bytes in C order, not copied again
+        if contiguous.size:
+            digest.update(memoryview(contiguous).cast("B"))
+    return digest.hexdigest()
+
+
+def checksum_problem(meta: dict, arrays: dict) -> str | None:
+    """What is wrong with a trial log's checksum (meta 'checksum', trial_log_checksum of the
+    rest), in words that follow the log's name, else None: none stored (a log written by hand
+    or before logs carried one), or one its contents do not give (edited after writing)."""
+    stored = meta.get(CHECKSUM_FIELD)
+    if stored is None:
+        return (f"holds no checksum (meta '{CHECKSUM_FIELD}'), which every trial log this "
+                "package writes carries, so an edited log cannot be told from a trial's")
+    actual = trial_log_checksum(meta, arrays)
+    if not isinstance(stored, str) or stored != actual:
+        return (f"was changed after it was written (its stored checksum "
+                f"{shorten(repr(stored), 80)} is not its contents' SHA-256 {actual})")
+    return None
 
 
 class LogNotWritten(Exception):
@@ -136,6 +177,19 @@ def load_trial_log(path: PathLike, *, rejudge: bool = True) -> TrialLog:
     rejudge=False: not asked, for a reader that judges the log anew, as
     analysis/rejudge_from_logs.py does after the judge changed)."""
     path = pathlib.Path(path)
+    meta, arrays = written_trial_log(path)
+    problem = trial_log_problem(meta, arrays, rejudge=rejudge)
+    if problem:
+        raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
+    return TrialLog(meta=meta, **arrays)
+
+
+def written_trial_log(path: pathlib.Path) -> tuple[dict, dict]:
+    """(metadata, arrays) of the trial log at `path` as TrialLog.save wrote it: a trial
+    log's arrays and metadata of this format version, holding the checksum of them all
+    (checksum_problem); TrialLogError naming the file otherwise. What load_trial_log reads
+    before it checks what the log holds, and what a run asks of an earlier run's log it
+    would replace (a file of the user's under its name is not one)."""
     check_trial_log_file(path)
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
@@ -173,10 +227,10 @@ def load_trial_log(path: PathLike, *, rejudge: bool = True) -> TrialLog:
                             f"{shorten(repr(version))}, this package reads "
                             f"{FORMAT_VERSION}; run the trial again with this package to "
                             "remake it")
-    problem = trial_log_problem(meta, arrays, rejudge=rejudge)
+    problem = checksum_problem(meta, arrays)  # before what an edit would make of its contents
     if problem:
-        raise TrialLogError(f"trial log '{path}': {problem}; run the trial again to remake it")
-    return TrialLog(meta=meta, **arrays)
+        raise TrialLogError(f"trial log '{path}' {problem}; run the trial again to remake it")
+    return meta, arrays
 
 
 def trial_log_problem(meta: dict, arrays: dict, *, rejudge: bool = True) -> str | None:
@@ -256,7 +310,7 @@ META_FIELDS = {
 }
 
 
-META_KEYS = frozenset({*META_FIELDS, "transitions", "format_version"})
+META_KEYS = frozenset({*META_FIELDS, "transitions", "format_version", CHECKSUM_FIELD})
 # The fields every trial log holds: each of its writers stores the controller that ran it
 # (runs/trial.py the scenario's, runs/ideal_grasp.py the open-loop script's), and the
 # figures' labels and the transition scores' check read it; a log without one was not

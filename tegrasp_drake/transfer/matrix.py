@@ -12,6 +12,7 @@ import sys
 import time
 from collections.abc import Mapping
 
+from tegrasp_drake.events.event_file import WORLD_FILE
 from tegrasp_drake.sweep.spec import (MAX_SCENARIO_OVERRIDES, PER_TRIAL_SCENARIO_FIELDS,
                                       SweepSpec, refuse_too_many)
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
@@ -28,7 +29,8 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, assignme
 
 EVENTS_FOLDER = "events"  # OUT/events/<world>: each memorizing world's events
 CELLS_FOLDER = "cells"  # OUT/cells/<cell>: each cell's sweep
-WORLD_FILE = "world.json"  # in a world's events folder: the assignments it was recorded with
+# WORLD_FILE: in a world's events folder, the assignments it was recorded with (the events
+# package declares it: a file its folder check knows)
 # The random_seed of the ideal grasp that records a world's paper events: the default
 # scenario's, which every transfer recorded its events at before a spec could set it.
 DEFAULT_EVENTS_SEED = 0

@@ -37,6 +37,7 @@ from tegrasp_drake.sweep.records import _checksum, record_path
 from tegrasp_drake.sweep.runner import run_sweep
 from tegrasp_drake.tactile.sampling import samples_per_window
 from tests.fake_trials import fake_trial, whole_result
+from tests.trial_log_contents import edit_trial_log, write_trial_log_contents
 
 
 def run_cli(argv, capfd) -> tuple[int, str]:
@@ -118,9 +119,8 @@ def trial_log(path, **changes):
             pass
     # every trial log names its controller (trial_log_file.REQUIRED_META_FIELDS): the
     # default scenario's
-    meta = json.dumps({"format_version": FORMAT_VERSION, "controller": "memorized"})
-    np.savez_compressed(path, meta=np.array(meta), **arrays)
-    return path
+    meta = {"format_version": FORMAT_VERSION, "controller": "memorized"}
+    return write_trial_log_contents(path, {"meta": meta, **arrays})
 
 
 def memorized_events(object_name="mine", sa_rate_hz=108.0, seed=0):
@@ -175,12 +175,7 @@ def trial_log_with(path, meta=None, **arrays):
         except (TypeError, ValueError, KeyError, AttributeError):  # a probe's malformed meta
             pass
     trial_log(path, **arrays)
-    with np.load(path) as data:
-        contents = {name: data[name] for name in data.files}
-    contents["meta"] = np.array(json.dumps({**json.loads(str(contents["meta"])),
-                                            **(meta or {})}))
-    np.savez_compressed(path, **contents)
-    return path
+    return edit_trial_log(path, path, lambda stored: stored.update(meta or {}))
 
 SEED = 604
 
@@ -455,3 +450,39 @@ def wait_for(condition, what):
 
 SEEDED_SWEEP = ("sweep: {controllers: [memorized], attempts: 1, objects: [box], "
                 "grid: [[0.0, 0.0]], base_seed: 640}\n")
+
+
+def earlier_run_of(folder, *names):
+    """`folder` holding an earlier run as a run leaves it: trial.npz (a small trial log with
+    its result and checksum: META's), each of `names` a real figure (save_figure) and
+    result.json, the log's result recording them under the result's fields."""
+    from tegrasp_drake.figures.figure_files import new_figure, save_figure
+    from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_KEYS
+    folder.mkdir(parents=True, exist_ok=True)
+    result = earlier_result_of(folder)
+    trial_log_with(folder / "trial.npz", META)
+    for name in names:
+        save_figure(new_figure(1, 1), folder / name)
+        result[TRIAL_FIGURE_KEYS[name.split(".")[0]]] = str(folder / name)
+    (folder / "result.json").write_text(json.dumps(result))
+    return folder
+
+
+
+
+def earlier_result_of(folder) -> dict:
+    """The result.json an earlier run into `folder` wrote, of the log earlier_run_of writes
+    (META's result, naming the folder's trial.npz as its log)."""
+    return {**META["result"], "log": str(folder / "trial.npz"),
+            "result": str(folder / "result.json")}
+
+
+def earlier_run_file(folder, name: str):
+    """`folder` holding one file of an earlier run (earlier_run_of's trial.npz or its
+    result.json), as a run left it."""
+    folder.mkdir(parents=True, exist_ok=True)
+    if name == "trial.npz":
+        trial_log_with(folder / name, META)
+    else:
+        (folder / name).write_text(json.dumps(earlier_result_of(folder)))
+    return folder

@@ -84,9 +84,9 @@ def test_an_events_variable_naming_a_folder_of_other_files_is_refused(tmp_path, 
     check_events_folder(None)  # empty but for a hidden file: no events recorded yet
     (folder / "hosts").write_text("127.0.0.1 localhost\n")
     code, text = run_cli(["plot", "events", "--out", str(tmp_path / "x.png")], capfd)
-    assert_one_line_error(code, text, f"TEGRASP_EVENTS_DIR='{folder}': {folder} holds no "
-                          "memorized events (no index.json) but other files (e.g. 'hosts'); "
-                          "point it at your events folder")
+    assert_one_line_error(code, text, f"TEGRASP_EVENTS_DIR='{folder}': {folder} is not an "
+                          "events folder: it holds no index.json but other files (e.g. "
+                          "'hosts'); point it at your events folder")
     assert not (tmp_path / "x.png").exists()
     (folder / "ensemble").mkdir()
     (folder / "ensemble" / "index.json").write_text("[]")
@@ -501,3 +501,89 @@ def test_a_path_that_is_not_utf8_is_shown_by_its_bytes(given, tmp_path, monkeypa
     code, text = run_cli(argv, capfd)
     assert_one_line_error(code, text, words)
     assert "\\udc" not in text
+
+
+# --- 7. one check of a folder's contents for its readers and its writers ----------------------
+
+def _documents(tmp_path):
+    """A folder of the user's own files: no events folder."""
+    folder = tmp_path / "documents"
+    (folder / "letters").mkdir(parents=True)
+    (folder / "tax-return.txt").write_text("mine\n")
+    (folder / "letters" / "to-ann.txt").write_text("dear Ann\n")
+    return folder
+
+
+# Rule: a folder that holds no index but other files (the user's documents, /etc) is not an
+# events folder: record-events refuses it before it simulates, save_memorized_events before it
+# writes, and every reader says it is no events folder (not that its index "is missing").
+def test_record_events_refuses_a_folder_of_other_files_before_simulating(tmp_path, capfd,
+                                                                          no_simulation):
+    folder = _documents(tmp_path)
+    before = folder_contents(folder)
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(folder)], capfd)
+    assert_one_line_error(code, text, f"--events {folder}: {folder} is not an events folder: "
+                          "it holds no index.json but other files (e.g. 'tax-return.txt'); "
+                          "give a new or empty folder", "nothing was recorded")
+    assert folder_contents(folder) == before
+
+
+def test_save_memorized_events_refuses_a_folder_of_other_files(tmp_path):
+    folder = _documents(tmp_path)
+    before = folder_contents(folder)
+    with pytest.raises(events_folder.EventsDestinationError, match="is not an events folder"):
+        save_memorized_events(folder, memorized_events("mine"))
+    assert folder_contents(folder) == before
+
+
+@pytest.mark.parametrize("argv, out", [(["plot", "events"], "x.png"), (["trial"], "run")],
+                         ids=["plot", "trial"])
+def test_readers_say_a_folder_of_other_files_is_not_an_events_folder(argv, out, tmp_path,
+                                                                     capfd):
+    folder = _documents(tmp_path)
+    code, text = run_cli([*argv, "--events", str(folder), "--out", str(tmp_path / out)], capfd)
+    assert_one_line_error(code, text, f"{folder} is not an events folder: it holds no "
+                          "index.json but other files", "give the folder `tegrasp "
+                          "record-events` wrote")
+    assert "missing" not in text
+    with pytest.raises(event_file.MemorizedEventError, match="is not an events folder"):
+        events_folder.find_memorized_events([folder], "box")
+
+
+def _stopped_recording(events, object_name="mine", index=False):
+    """What a recording of `object_name` killed between its event files' renames and its index
+    leaves: the object's event files, no index entry (`index`: other objects' index kept)."""
+    if index:
+        save_memorized_events(events, memorized_events("other"))
+    staging = tmp = events.parent / "staging"
+    save_memorized_events(tmp, memorized_events(object_name))
+    (events / object_name).mkdir(parents=True)
+    for path in (staging / object_name).iterdir():
+        path.rename(events / object_name / path.name)
+    return events
+
+
+# Rule: what a stopped recording left (an object's event files without their index entry) is
+# refused by its readers, saying to record the object again and how, never read as "no
+# events" (nor passed over for the package's); recording into it again makes it whole.
+@pytest.mark.parametrize("index", [False, True], ids=["no-index", "index-without-it"])
+def test_a_stopped_recordings_event_files_are_refused_and_recorded_again(index, tmp_path):
+    events = _stopped_recording(tmp_path / "ev", index=index)
+    again = (f"record them again with --events {events}: Remake it with `tegrasp "
+             "record-events` and the options that describe 'mine'")
+    with pytest.raises(event_file.MemorizedEventError) as refused:
+        events_folder.load_memorized_events(events, "mine")
+    assert "recording stopped before it wrote" in str(refused.value)
+    assert again in str(refused.value) and "\n" not in str(refused.value)
+    with pytest.raises(event_file.MemorizedEventError, match="recording stopped before"):
+        events_folder.find_memorized_events([events, tmp_path / "package"], "mine")
+    events_folder.check_events_destination(events, ["mine"])  # a writer takes it
+    save_memorized_events(events, memorized_events("mine", seed=3))
+    assert set(events_folder.load_memorized_events(events, "mine")) >= {"reach_load"}
+
+
+def test_a_folder_that_cannot_be_made_in_says_so_and_what_to_do(capfd, no_simulation):
+    code, text = run_cli(["record-events", "--object", "box", "--events", "/proc"], capfd)
+    assert_one_line_error(code, text, "--events /proc: /proc cannot be written in: making a "
+                          "folder there failed", "give a folder you can write")
+    assert "not writable (No such file" not in text

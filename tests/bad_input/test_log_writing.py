@@ -18,10 +18,11 @@ from tegrasp_drake.sweep import runner, trial_function
 from tegrasp_drake.sweep.runner import SweepSummary, summary_text
 from tegrasp_drake.sweep.spec import SweepSpec, expand_trials
 from tegrasp_drake.sweep.trial_function import trial_log_name
-from tests.bad_input.probes import assert_one_line_error, folder_contents, run_cli
+from tests.bad_input.probes import (assert_one_line_error, earlier_run_of, folder_contents,
+                                    run_cli)
 from tests.fake_trials import whole_result
 from tests.runs.test_hardware_output_safety import disk_with_free_bytes
-from tests.runs.earlier_hardware_run import EARLIER_LOG
+from tests.runs.earlier_hardware_run import EARLIER_LOG, EARLIER_RESULT
 
 
 def test_a_hardware_run_whose_devices_do_not_come_up_keeps_the_earlier_log(tmp_path,
@@ -29,6 +30,7 @@ def test_a_hardware_run_whose_devices_do_not_come_up_keeps_the_earlier_log(tmp_p
     monkeypatch.chdir(tmp_path)
     (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
     (tmp_path / "old.lcmlog").write_bytes(EARLIER_LOG)
+    (tmp_path / "old.result.json").write_text(EARLIER_RESULT.replace("run.lcmlog", "old.lcmlog"))
     code = cli.main(["hardware", "--config", "hw.yaml", "--config-set",
                      "tactile.port=/dev/no_such_port", "--config-set",
                      "gripper.port=/dev/no_such_gripper_port", "--config-set", "ready_timeout=1",
@@ -38,7 +40,8 @@ def test_a_hardware_run_whose_devices_do_not_come_up_keeps_the_earlier_log(tmp_p
     assert code == 1, captured
     assert "tegrasp: error:" in captured.err and "error" not in captured.out  # on stderr
     assert (tmp_path / "old.lcmlog").read_bytes() == EARLIER_LOG
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["hw.yaml", "old.lcmlog"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hw.yaml", "old.lcmlog",
+                                                          "old.result.json"]
 
 
 def test_a_hardware_run_commits_its_log_and_result_together(tmp_path):
@@ -82,8 +85,7 @@ def test_a_trial_on_a_disk_too_full_for_its_files_is_refused_before_it_simulates
     from tegrasp_drake.runs import trial as trial_module
     out = tmp_path / "run"
     if earlier:
-        out.mkdir()
-        (out / "result.json").write_text('{"earlier": true}\n')
+        earlier_run_of(out)
     before = folder_contents(tmp_path)
     disk_with_free_bytes(monkeypatch, 40_960)
     monkeypatch.setattr(trial_module, "run_trial", lambda *a, **k: pytest.fail("it simulated"))
@@ -162,11 +164,14 @@ def test_a_log_that_stops_is_reported_once_by_the_run_and_named_by_its_closing_e
 
 
 def _long_log(folder, contents=None):
-    """A --log of 211 characters (a 200-character folder name), holding `contents` if given."""
+    """A --log of 211 characters (a 200-character folder name), holding `contents` if given
+    (EARLIER_LOG: an earlier run's, its result beside it)."""
     log = pathlib.Path("d" * 200) / "run.lcmlog"
     (folder / log.parent).mkdir()
     if contents is not None:
         (folder / log).write_bytes(contents)
+    if contents == EARLIER_LOG:
+        (folder / log.parent / "run.result.json").write_text(EARLIER_RESULT)
     return str(log)
 
 

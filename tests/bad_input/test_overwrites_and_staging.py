@@ -17,6 +17,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pytest
 
 from tegrasp_drake.commands import run_folder
@@ -24,24 +25,10 @@ from tegrasp_drake.commands.run_folder import staging_file_beside
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.rig.files import held_folder
 from tests import killed_runs
-from tests.bad_input.probes import (FAKE_TRIALS, assert_one_line_error, folder_contents,
-                                    memorized_events, no_recording, run_cli, transfer_out)
+from tests.bad_input.probes import (FAKE_TRIALS, assert_one_line_error, earlier_run_of,
+                                    folder_contents, memorized_events, no_recording, run_cli,
+                                    transfer_out)
 from tests.commands.test_run_folder import _ended_process_id
-
-
-def earlier_run_of(folder, *names, log=b"earlier"):
-    """`folder` holding an earlier run as a run leaves it: trial.npz (`log`), each of `names`
-    a real figure (save_figure) and result.json recording them under the result's fields."""
-    from tegrasp_drake.figures.figure_files import new_figure, save_figure
-    from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_KEYS
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / "trial.npz").write_bytes(log)
-    result = {"log": str(folder / "trial.npz"), "result": str(folder / "result.json")}
-    for name in names:
-        save_figure(new_figure(1, 1), folder / name)
-        result[TRIAL_FIGURE_KEYS[name.split(".")[0]]] = str(folder / name)
-    (folder / "result.json").write_text(json.dumps(result))
-    return folder
 
 
 def test_an_overwritten_run_keeps_none_of_the_earlier_runs_figures(tmp_path):
@@ -307,6 +294,30 @@ def test_a_hardware_log_naming_a_file_that_is_no_lcm_log_is_said_so_and_kept(
     assert folder_contents(tmp_path) == before
 
 
+# Rule: --overwrite replaces an LCM log only when it is an earlier run's (its result beside
+# it names it): an LCM log of the user's (lcm-logger's, no run's result beside it) is said to
+# be one before the devices are asked for, with or without --overwrite, and stays.
+@pytest.mark.parametrize("overwrite", [[], ["--overwrite"]])
+@pytest.mark.parametrize("result", [None, '{"transitions": [], "faults": [], "log": '
+                                          '"other.lcmlog", "device_counters": {}}\n'],
+                         ids=["no-result", "result-of-another-log"])
+def test_a_hardware_log_naming_a_users_lcm_log_is_said_so_and_kept(
+        tmp_path, capfd, monkeypatch, overwrite, result):
+    from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
+    (tmp_path / "mine.lcmlog").write_bytes(LCM_LOG_START + b"my own recording of the bus")
+    if result is not None:
+        (tmp_path / "mine.result.json").write_text(result)
+    before = folder_contents(tmp_path)
+    code, text = run_cli(["hardware", "--config", "hw.yaml", "--log", "mine.lcmlog",
+                          "--duration", "5", *overwrite], capfd)
+    assert_one_line_error(code, text, "--log mine.lcmlog exists and is an LCM log of no "
+                          "earlier run (no mine.result.json beside it names it",
+                          "give another --log, or remove it yourself")
+    assert folder_contents(tmp_path) == before
+
+
 # Rule: a run removes only the staging folders a run left (named as mkdtemp names them,
 # holding nothing but a run's own files), never a folder of the user's with that prefix.
 def test_a_run_keeps_a_users_folder_named_like_a_staging_folder(tmp_path):
@@ -535,3 +546,56 @@ def test_record_events_into_a_folder_another_recording_holds_is_refused_at_once(
     assert_one_line_error(code, text, f"--events {events}: another run is recording events "
                                       "there now")
     assert list(events.iterdir()) == []
+
+
+def _edited_earlier_log(folder):
+    """The earlier run's trial.npz with one taxel changed by hand (its checksum kept)."""
+    from tests.trial_log_contents import read_trial_log_contents
+    contents = read_trial_log_contents(folder / "trial.npz")
+    contents["taxels"] = contents["taxels"] + 0.5
+    np.savez_compressed(folder / "trial.npz", **contents)
+
+
+def _result_edit(change):
+    def edit(folder):
+        data = json.loads((folder / "result.json").read_text())
+        change(data)
+        (folder / "result.json").write_text(json.dumps(data))
+    return edit
+
+
+# Rule: --overwrite replaces a run folder's trial.npz and result.json only when they are an
+# earlier run's (trial.npz a trial log with its checksum, result.json a trial's result naming
+# trial.npz and, beside it, that log's result): a file of the user's under one of those names
+# refuses the trial or demo before it simulates, naming the file and what to do, and stays.
+@pytest.mark.parametrize("spoil, name, words", [
+    (lambda folder: (folder / "trial.npz").write_text("my notes"), "trial.npz",
+     "is not a trial log a run wrote (is truncated or corrupt"),
+    (_edited_earlier_log, "trial.npz", "is not a trial log a run wrote (was changed after it "
+     "was written"),
+    (lambda folder: np.savez(folder / "trial.npz", x=[1.0]), "trial.npz",
+     "is not a trial log a run wrote (is truncated or corrupt ('x.npy' is not an array a trial "
+     "log has"),
+    (lambda folder: (folder / "result.json").write_text('{"my": "data"}'), "result.json",
+     "is not a trial's result (field 'object' is missing"),
+    (_result_edit(lambda data: data.update(log="/home/me/thesis.npz")), "result.json",
+     "is a result whose log is '/home/me/thesis.npz', not a run's trial.npz"),
+    (_result_edit(lambda data: data.update(hold_time_s=0.05)), "result.json",
+     "is not the result of the trial.npz beside it (their 'hold_time_s' differ)"),
+], ids=["notes-log", "edited-log", "other-npz", "other-json", "other-log", "other-result"])
+@pytest.mark.parametrize("command", ["trial", "demo"])
+def test_an_overwrite_refuses_a_users_trial_log_or_result_before_simulating(
+        spoil, name, words, command, tmp_path, capfd, monkeypatch):
+    from tegrasp_drake.runs import trial as trial_module
+    monkeypatch.setattr(trial_module, "run_trial",
+                        lambda *a, **k: pytest.fail("the trial was simulated"))
+    monkeypatch.chdir(tmp_path)
+    folder = earlier_run_of(tmp_path / "out" / "demo", "states.png")
+    assert run_folder.foreign_run_file_problem(folder) is None  # the earlier run's own
+    spoil(folder)
+    before = folder_contents(folder)
+    argv = ["demo"] if command == "demo" else ["trial", "--out", str(folder), "--overwrite"]
+    code, text = run_cli(argv, capfd)
+    assert_one_line_error(code, text, f"{name} {words}", f"a run replaces its {name}; move it "
+                          "out of the folder, or give another --out")
+    assert folder_contents(folder) == before

@@ -24,6 +24,7 @@ from tests.bad_input.probes import (META, SCENARIO, TIMELINE, assert_one_line_er
                                     meta_refused, one_line_of, refused_log, refused_meta,
                                     result_refused, run_cli, run_probe, trial_log, trial_log_with)
 from tests.fake_trials import small_trial_log, whole_result
+from tests.trial_log_contents import read_trial_log_contents, write_trial_log_contents
 
 
 def _truncate(path):
@@ -57,10 +58,7 @@ def test_a_damaged_trial_log_is_named_and_not_plotted(make, expected, tmp_path, 
 def _with_meta(path, meta):
     """A small trial log whose metadata is `meta` alone."""
     trial_log(path)
-    with np.load(path) as data:
-        contents = {name: data[name] for name in data.files}
-    np.savez_compressed(path, **{**contents, "meta": np.array(json.dumps(meta))})
-    return path
+    return write_trial_log_contents(path, {**read_trial_log_contents(path), "meta": meta})
 
 
 # Rule: a trial log whose metadata names no format version (`{}`, or a null version) is said to
@@ -110,9 +108,8 @@ def _small_trial_log(path, channels: int) -> pathlib.Path:
     for name in ("arm_q", "arm_q_desired"):  # joints 2 and 3 within the JACO2's limits
         arrays[name][:, 1:3] = [3.0, 1.0]
     # written as it stands (TrialLog.save refuses such a log): what the readers are given
-    np.savez_compressed(path, meta=np.array(json.dumps(
-        {"format_version": FORMAT_VERSION, "controller": "memorized"})), **arrays)
-    return path
+    return write_trial_log_contents(
+        path, {"meta": {"format_version": FORMAT_VERSION, "controller": "memorized"}, **arrays})
 
 
 def test_a_trial_log_the_plots_refuse_is_not_streamed_either(tmp_path):
@@ -129,8 +126,6 @@ def test_a_trial_log_the_plots_refuse_is_not_streamed_either(tmp_path):
 # tactile signals), and a plot's preconditions are said in one line: the Avoid figure of a
 # controller without an Avoid reaction is "no Avoid transition", not an internal error.
 def test_trial_log_arrays_and_the_avoid_plots_precondition(tmp_path):
-    import json
-
     import numpy as np
 
     from tegrasp_drake.cli import main
@@ -146,7 +141,7 @@ def test_trial_log_arrays_and_the_avoid_plots_precondition(tmp_path):
     scenario = T.with_controller(T.LoadScenario(name="box"), "open_loop")
     meta = {"format_version": FORMAT_VERSION, "scenario": T.scenario_to_yaml(scenario),
             "controller": "open_loop", "transitions": []}
-    np.savez_compressed(path, meta=np.array(json.dumps(meta)), **arrays)
+    write_trial_log_contents(path, {"meta": meta, **arrays})
     with pytest.raises(SystemExit) as refused:
         main(["plot", "avoid", str(path), "--out", str(tmp_path / "a.png")])
     assert "no Avoid transition" in str(refused.value.code), refused.value.code

@@ -19,13 +19,13 @@ from tegrasp_drake.hardware.device_fault import DeviceFault
 from tegrasp_drake.hardware.myrio.serial_reader import TactileReaderCounters
 from tegrasp_drake.hardware.myrio.tactile_frame import TactileDecoderCounters
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusCounters
+from tests.bad_input.probes import earlier_run_file
 from tests.runs.earlier_hardware_run import EARLIER_LOG, EARLIER_RESULT
 
 
 def earlier_run(folder, name="trial.npz"):
-    folder.mkdir(parents=True, exist_ok=True)
-    (folder / name).write_text("an earlier run")
-    return folder
+    """`folder` holding `name` of an earlier run as the run wrote it (earlier_run_file)."""
+    return earlier_run_file(folder, name)
 
 
 @pytest.mark.parametrize("command", ["trial", "demo"])
@@ -33,21 +33,23 @@ def earlier_run(folder, name="trial.npz"):
 def test_a_named_folder_that_holds_a_run_is_refused_before_simulating(tmp_path, capsys,
                                                                        command, left):
     folder = earlier_run(tmp_path / "run", left)
+    before = (folder / left).read_bytes()
     with pytest.raises(SystemExit) as exit_info:
         cli.main([command, "--out", str(folder)])
     message = str(exit_info.value.code)
     assert message.startswith("tegrasp: error: ") and "\n" not in message
     assert str(folder) in message and "--overwrite" in message and left in message
-    assert (folder / left).read_text() == "an earlier run"
+    assert (folder / left).read_bytes() == before
     assert capsys.readouterr().out == ""
 
 
 def test_overwrite_allows_the_named_folder_and_keeps_its_old_run_until_the_new_one_commits(
         tmp_path):
     folder = earlier_run(earlier_run(tmp_path / "run", RESULT_FILE))
+    before = (folder / RESULT_FILE).read_bytes()
     assert choose_run_folder(str(folder), default="unused", replace_default=False,
                              overwrite=True) == folder
-    assert (folder / RESULT_FILE).read_text() == "an earlier run"  # kept until the commit
+    assert (folder / RESULT_FILE).read_bytes() == before  # kept until the commit
     with staged_run(folder) as stage:
         (stage / "trial.npz").write_text("the new run")
         result = commit_run(stage, folder, {"log": str(stage / "trial.npz")})
@@ -59,12 +61,13 @@ def test_overwrite_allows_the_named_folder_and_keeps_its_old_run_until_the_new_o
 
 def test_a_run_interrupted_before_its_commit_leaves_the_earlier_run_whole(tmp_path):
     folder = earlier_run(earlier_run(tmp_path / "run", RESULT_FILE))
+    before = (folder / "trial.npz").read_bytes()
     with pytest.raises(KeyboardInterrupt):
         with staged_run(folder) as stage:
             (stage / "trial.npz").write_text("half a new run")
             raise KeyboardInterrupt
     assert sorted(p.name for p in folder.iterdir()) == [RESULT_FILE, "trial.npz"]
-    assert (folder / "trial.npz").read_text() == "an earlier run"
+    assert (folder / "trial.npz").read_bytes() == before
 
 
 def test_two_runs_without_out_claim_different_folders(tmp_path):
@@ -86,11 +89,12 @@ def test_an_empty_named_folder_is_used(tmp_path):
 def test_trial_without_out_takes_the_next_free_numbered_folder(tmp_path):
     default = tmp_path / "out" / "trial"
     earlier_run(default)
+    before = (default / "trial.npz").read_bytes()
     earlier_run(tmp_path / "out" / "trial-2", RESULT_FILE)
     chosen = choose_run_folder(None, default=str(default), replace_default=False,
                                overwrite=False)
     assert chosen == tmp_path / "out" / "trial-3" and chosen.is_dir()
-    assert (default / "trial.npz").read_text() == "an earlier run"
+    assert (default / "trial.npz").read_bytes() == before
 
 
 def test_demo_without_out_replaces_its_own_folder(tmp_path):
@@ -114,6 +118,7 @@ def test_hardware_refuses_an_existing_log_before_connecting(tmp_path, monkeypatc
     config.write_text(hardware_config_to_yaml(HardwareStationConfig()))
     log = tmp_path / "run.lcmlog"
     log.write_bytes(EARLIER_LOG)
+    (tmp_path / "run.result.json").write_text(EARLIER_RESULT)  # the run's, naming its log
     with pytest.raises(SystemExit) as exit_info:
         cli.main(["hardware", "--config", "hw.yaml", "--log", "run.lcmlog"])
     message = str(exit_info.value.code)

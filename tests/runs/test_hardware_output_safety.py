@@ -127,10 +127,11 @@ def test_a_failed_run_of_a_log_without_a_suffix_keeps_the_earlier_result(tmp_pat
     monkeypatch.chdir(tmp_path)
     (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
     (tmp_path / "run").write_bytes(EARLIER_LOG)
-    (tmp_path / "run.result.json").write_text(EARLIER_RESULT)
+    earlier_result = EARLIER_RESULT.replace('"run.lcmlog"', '"run"')  # the run's log: run
+    (tmp_path / "run.result.json").write_text(earlier_result)
     monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(log_fault=FAULT))
     assert cli.main(HARDWARE_TO + ["run"]) == 2
-    assert (tmp_path / "run.result.json").read_text() == EARLIER_RESULT
+    assert (tmp_path / "run.result.json").read_text() == earlier_result
     assert (tmp_path / "run.failed.lcmlog").read_bytes() == b"this run's log"
     assert (tmp_path / "run.failed.result.json").exists()
 

@@ -2,13 +2,12 @@
 and its text is bounded before it is decompressed: a 1 MB file of one repeated character
 declares hundreds of MB."""
 
-import json
 
-import numpy as np
 import pytest
 
 from tegrasp_drake.scenario.trial_log_file import MAX_META_CHARS, TrialLogError, load_trial_log
 from tests.bad_input.probes import assert_one_line_error, run_cli, trial_log_with
+from tests.trial_log_contents import edit_trial_log
 
 
 def test_a_trial_log_whose_meta_holds_a_key_no_writer_stores_is_refused(tmp_path):
@@ -31,12 +30,7 @@ def test_a_trial_log_whose_meta_declares_too_much_text_is_refused_before_reading
 # field, never read as a log of no controller.
 def test_a_trial_log_whose_meta_has_no_controller_is_refused_naming_the_field(tmp_path, capfd):
     path = trial_log_with(tmp_path / "trial.npz")
-    with np.load(path) as stored:
-        contents = {name: stored[name] for name in stored.files}
-    meta = json.loads(str(contents["meta"]))
-    assert meta.pop("controller") == "memorized"
-    contents["meta"] = np.array(json.dumps(meta))
-    np.savez_compressed(path, **contents)
+    edit_trial_log(path, path, lambda meta: meta.pop("controller"))
     with pytest.raises(TrialLogError, match="meta lacks the field 'controller'"):
         load_trial_log(path)
     code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "t.png")], capfd)

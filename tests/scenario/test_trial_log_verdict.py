@@ -3,14 +3,13 @@ judges it again (trial_judge.stored_verdict_problem) and refuses an edited verdi
 line naming the file, the field, the stored and the judged value, and to run the trial
 again."""
 
-import json
 
-import numpy as np
 import pytest
 
 from tegrasp_drake.runs.trial import run_trial
 from tegrasp_drake.scenario.scenario import LoadScenario
 from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
+from tests.trial_log_contents import edit_trial_log
 
 
 @pytest.fixture(scope="module")
@@ -22,13 +21,7 @@ def real_log(tmp_path_factory):
 
 def _edited(source, path, **changes):
     """`source` with its meta 'result' fields changed to `changes`, written to `path`."""
-    with np.load(source) as data:
-        contents = {name: data[name] for name in data.files}
-    meta = json.loads(str(contents["meta"]))
-    meta["result"].update(changes)
-    contents["meta"] = np.array(json.dumps(meta))
-    np.savez_compressed(path, **contents)
-    return path
+    return edit_trial_log(source, path, lambda meta: meta["result"].update(changes))
 
 
 def test_an_unedited_trial_log_is_read_with_its_result(real_log):

@@ -3,25 +3,21 @@ Python reads as 1 (the version this package writes), is refused."""
 
 import json
 
-import numpy as np
 import pytest
 
 from tegrasp_drake.rig.ranges import is_integer
 from tegrasp_drake.scenario.trial_log_file import (FORMAT_VERSION, TrialLogError,
                                                    load_trial_log)
 from tests.fake_trials import small_trial_log
+from tests.trial_log_contents import edit_trial_log, read_trial_log_contents
 
 
 def test_a_trial_log_whose_format_version_is_true_is_refused(tmp_path):
     saved = small_trial_log().save(tmp_path / "saved.npz")
-    with np.load(saved) as data:
-        arrays = {name: data[name] for name in data.files}
-    meta = json.loads(str(arrays["meta"]))
+    meta = json.loads(str(read_trial_log_contents(saved)["meta"]))
     assert meta["format_version"] == FORMAT_VERSION == True  # noqa: E712: the trap itself
-    meta["format_version"] = True
-    arrays["meta"] = np.array(json.dumps(meta))
-    path = tmp_path / "trial.npz"
-    np.savez(path, **arrays)
+    path = edit_trial_log(saved, tmp_path / "trial.npz",
+                          lambda meta: meta.update(format_version=True))
     with pytest.raises(TrialLogError, match="has format version True"):
         load_trial_log(path)
 
