@@ -384,9 +384,9 @@ def foreign_figure_problem(folder) -> str | None:
 def foreign_run_file_problem(folder) -> str | None:
     """Why a run may not be written into `folder`, or None: its trial.npz or result.json (a
     regular file under a run's own name, which a run replaces) is not an earlier run's:
-    trial.npz must be a trial log as TrialLog.save wrote it (written_trial_log: of this
-    format, its checksum that of what it holds), result.json a trial's result (TrialResult's
-    JSON form) naming trial.npz as its log and, beside a log, that log's own result. Asked
+    trial.npz must be a trial log as TrialLog.save wrote it (written_trial_log: its checksum
+    that of what it holds, or, written by an earlier version of the package, none), result.json
+    a trial's result (TrialResult's JSON form) naming trial.npz as its log and, beside a log, that log's own result. Asked
     before the run simulates, as foreign_figure_problem is for the figures."""
     from tegrasp_drake.scenario.trial_log_file import TrialLogError, written_trial_log
     from tegrasp_drake.scenario.trial_result import TrialResult
@@ -402,7 +402,7 @@ def foreign_run_file_problem(folder) -> str | None:
     logged_result = None
     if own(folder / log_name):
         try:
-            logged_result = written_trial_log(folder / log_name)[0].get("result")
+            logged_result = written_trial_log(folder / log_name, any_version=True)[0].get("result")
         except TrialLogError as error:
             reason = str(error).removeprefix(f"trial log '{folder / log_name}'").lstrip(": ")
             reason = reason.split("; run the trial again")[0]

@@ -184,12 +184,15 @@ def load_trial_log(path: PathLike, *, rejudge: bool = True) -> TrialLog:
     return TrialLog(meta=meta, **arrays)
 
 
-def written_trial_log(path: pathlib.Path) -> tuple[dict, dict]:
+def written_trial_log(path: pathlib.Path, *,
+                      any_version: bool = False) -> tuple[dict, dict]:
     """(metadata, arrays) of the trial log at `path` as TrialLog.save wrote it: a trial
     log's arrays and metadata of this format version, holding the checksum of them all
     (checksum_problem); TrialLogError naming the file otherwise. What load_trial_log reads
-    before it checks what the log holds, and what a run asks of an earlier run's log it
-    would replace (a file of the user's under its name is not one)."""
+    before it checks what the log holds. With `any_version`, a log of any format version
+    written before logs carried a checksum is taken too (one an earlier version of the
+    package wrote; a log with a checksum must still match it): what a run asks of an earlier
+    run's log it would replace (a file of the user's, or a log edited by hand, is not one)."""
     check_trial_log_file(path)
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
@@ -222,6 +225,8 @@ def written_trial_log(path: pathlib.Path) -> tuple[dict, dict]:
         raise TrialLogError(f"trial log '{path}': its metadata has no format version, so "
                             "`tegrasp trial` did not write it; run the trial again "
                             "(`tegrasp trial --out DIR` writes DIR/trial.npz)")
+    if any_version and is_integer(version) and CHECKSUM_FIELD not in meta:
+        return meta, arrays  # written before logs carried a checksum
     if not is_integer(version) or version != FORMAT_VERSION:
         raise TrialLogError(f"trial log '{path}' has format version "
                             f"{shorten(repr(version))}, this package reads "

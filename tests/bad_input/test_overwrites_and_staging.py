@@ -599,3 +599,20 @@ def test_an_overwrite_refuses_a_users_trial_log_or_result_before_simulating(
     assert_one_line_error(code, text, f"{name} {words}", f"a run replaces its {name}; move it "
                           "out of the folder, or give another --out")
     assert folder_contents(folder) == before
+
+
+def test_a_run_written_before_logs_carried_a_checksum_is_still_an_earlier_run(tmp_path):
+    """A run folder an earlier version of the package wrote (its trial.npz without meta
+    'checksum') may be replaced by `tegrasp demo` or `trial --overwrite`, as a run of this
+    version may; load_trial_log still refuses to read that log."""
+    from tegrasp_drake.scenario.trial_log_file import TrialLogError, load_trial_log
+    from tests.trial_log_contents import read_trial_log_contents
+    folder = earlier_run_of(tmp_path / "out" / "demo", "states.png")
+    contents = read_trial_log_contents(folder / "trial.npz")
+    meta = json.loads(str(contents["meta"]))
+    del meta["checksum"]
+    contents["meta"] = np.array(json.dumps(meta))
+    np.savez_compressed(folder / "trial.npz", **contents)
+    assert run_folder.foreign_run_file_problem(folder) is None
+    with pytest.raises(TrialLogError, match="holds no checksum"):
+        load_trial_log(folder / "trial.npz")
