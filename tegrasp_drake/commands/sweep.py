@@ -10,6 +10,7 @@ import argparse
 import contextlib
 import dataclasses
 import importlib
+import re
 import sys
 
 from tegrasp_drake.commands.progress import progress_wanted
@@ -33,6 +34,7 @@ from tegrasp_drake.sweep.runner import (
     check_sweep_folder,
     run_benchmark,
     run_sweep,
+    scheduler_address,
     summary_text,
 )
 from tegrasp_drake.sweep.spec import (
@@ -83,7 +85,9 @@ def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -
     parser.add_argument("--out", default=default_out, metavar="DIR",
                         help=f"results folder; re-running resumes it (default: {default_out})")
     parser.add_argument("--scheduler", metavar="tcp://HOST:PORT", type=scheduler_option,
-                        help="run on this Dask distributed scheduler (the 'dask' extra)")
+                        help="run on this Dask distributed scheduler, tcp://HOST:PORT or "
+                             "HOST:PORT "
+                             "(the 'dask' extra)")
     parser.add_argument("--no-progress", action="store_true",
                         help="no progress bar (there is none off a terminal either)")
     parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
@@ -259,27 +263,55 @@ DASK_PROTOCOLS = ("tcp",)
 OTHER_DASK_PROTOCOLS = ("tls", "ucx", "ws", "wss")
 
 
-SCHEDULER_FORM = "give tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786"
+SCHEDULER_FORM = "give tcp://HOST:PORT or HOST:PORT, e.g. tcp://127.0.0.1:8786"
+
+# A HOST's name (RFC 1123): dot-separated labels of letters, digits and inner hyphens, each
+# at most 63 characters, 253 in all; or an IP address (an IPv6 one in brackets).
+_HOST_LABEL = re.compile(r"^(?!-)[A-Za-z0-9-]{1,63}(?<!-)$")
+
+
+def _host_problem(host: str, bracketed: bool) -> str | None:
+    """Why `host` (of tcp://HOST:PORT; `bracketed`: written [HOST]) names no host, or None."""
+    import ipaddress
+    try:
+        address = ipaddress.ip_address(host)
+    except ValueError:
+        address = None
+    if bracketed:
+        return None if address is not None and address.version == 6 else (
+            f"HOST [{shown(host)[1:-1]}] is not an IPv6 address")
+    if address is not None:
+        return None
+    labels = host.removesuffix(".").split(".")
+    if len(host) > 253 or not all(_HOST_LABEL.match(label) for label in labels):
+        return (f"HOST {shown(host)} is not a host name (letters, digits, '-' and '.') nor "
+                "an IP address")
+    return None
 
 
 def _scheduler_parts(address: str):
-    """(URL parts, HOST, PORT text) of `address` read as tcp://HOST:PORT, or (None, words)
-    when it has no such form (scheduler_form_problem); (None, None) for another protocol,
-    whose address scheduler_problem refuses by its protocol, not its form."""
+    """(URL parts, HOST, PORT text) of `address` read as tcp://HOST:PORT (HOST:PORT without
+    a protocol: scheduler_address), or (None, words) when it has no such form
+    (scheduler_form_problem); (None, None) for another protocol, whose address
+    scheduler_problem refuses by its protocol, not its form."""
     import urllib.parse
     if not address.strip():
         return None, "the address is blank"
+    address = scheduler_address(address)
     scheme, separator, _ = address.partition("://")
-    if not separator or not scheme:
-        return None, "it has no PROTOCOL:// (a Dask scheduler's address is a URL)"
+    if not scheme:
+        return None, "it has no PROTOCOL before its :// (a Dask scheduler's is tcp://)"
     if scheme.lower() not in DASK_PROTOCOLS:
         return None, None
     try:
         parts = urllib.parse.urlsplit(address)
-    except ValueError:  # an unclosed '[' of an IPv6 HOST
+    except ValueError:  # an unclosed '[' of an IPv6 HOST, or no IPv6 address in [...]
+        if "]" in address:
+            return None, "its [HOST] is not an IPv6 address"
         return None, "its HOST has a '[' without its ']'"
     where = parts.netloc.rpartition("@")[2]
-    if where.startswith("["):
+    bracketed = where.startswith("[")
+    if bracketed:
         host, _, rest = where[1:].partition("]")
         if rest and not rest.startswith(":"):
             return None, f"{shown(rest)} follows its [HOST] where ':PORT' belongs"
@@ -293,6 +325,9 @@ def _scheduler_parts(address: str):
         return None, "it has no port"
     if not (port.isascii() and port.isdecimal()):
         return None, f"port {shown(port)} is not a number"
+    problem = _host_problem(host, bracketed)
+    if problem:
+        return None, problem
     return parts, host, port
 
 
@@ -305,8 +340,9 @@ def scheduler_form_problem(address: str) -> str | None:
 
 
 def scheduler_option(text: str) -> str:
-    """argparse's type of --scheduler: the address as given, or a usage error (exit 2) when
-    it does not parse (scheduler_form_problem); '' is left to the refusal of empty values,
+    """argparse's type of --scheduler: the address as given (HOST:PORT is tcp://HOST:PORT:
+    runner.scheduler_address), or a usage error (exit 2) when it does not parse
+    (scheduler_form_problem); '' is left to the refusal of empty values,
     text holding a control character to usage_parser.argument_text_problem (exit 2)."""
     from tegrasp_drake.rig.typed_yaml import text_problem
     problem = scheduler_form_problem(text) if text and not text_problem(text) else None
@@ -321,6 +357,7 @@ def scheduler_problem(address: str) -> str | None:
     protocol is read case-insensitively, as connect_scheduler passes it on (in lower case)."""
     if not address.strip():
         return "is empty"
+    address = scheduler_address(address)
     form = scheduler_form_problem(address)
     if form:
         return f"is not an address: {form}"
