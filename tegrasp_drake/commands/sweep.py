@@ -13,6 +13,7 @@ import importlib
 import re
 import sys
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.run_folder import logs_folder_problem, other_run_problem
 from tegrasp_drake.commands.events_option import check_events_folder
@@ -232,7 +233,7 @@ def unwritten_log_error(logs, unwritten_log: str, left: int | None = None) -> st
     """The one error line of a sweep that stopped at a --logs copy it could not write
     ("PATH: reason", SweepSummary.unwritten_log), `left` trials unrun."""
     left_words = "" if left is None else f" ({left} trial(s) left for the next run)"
-    return (f"tegrasp sweep: error: --logs {logs}: cannot write the trial log {unwritten_log}; "
+    return (f"{ERROR_LEAD}--logs {logs}: cannot write the trial log {unwritten_log}; "
             f"its trial's result is recorded and the sweep stopped{left_words}: free space "
             "or give another --logs (a recorded trial's log is made again only in a new --out)")
 
@@ -399,9 +400,9 @@ class Refusal:
 
 
 @contextlib.contextmanager
-def refusals_said(command: str):
+def refusals_said():
     """The refusals of a command that runs sweeps (sweep, transfer, sensitivity), each said
-    in one line on stderr, `tegrasp COMMAND: error: ...`, with its exit code set on the
+    in one line on stderr, `tegrasp: error: ...` (ERROR_LEAD), with its exit code set on the
     Refusal yielded: 1 for bad input (OptionError), an output folder that cannot take a
     record (RecordPlaceError) and a scheduler lost mid-run
     (SchedulerLostError: the unfinished trials run again with the same command), 2 for a
@@ -413,13 +414,13 @@ def refusals_said(command: str):
     try:
         yield refusal
     except (OptionError, SchedulerLostError, RecordPlaceError) as error:
-        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
+        print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 1
     except (ConfigError, SweepError) as error:
-        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
+        print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 2
     except MemorizedEventError as error:
-        raise SystemExit(f"tegrasp: error: {error}") from None
+        raise SystemExit(f"{ERROR_LEAD}{error}") from None
 
 
 def check_runner_arguments(args, command: str) -> None:
@@ -513,7 +514,7 @@ def check_benchmark_options(args) -> None:
 
 
 def run(args) -> int:
-    with refusals_said("sweep") as refused:
+    with refusals_said() as refused:
         check_benchmark_options(args)  # before the scheduler is asked whether it answers
         check_runner_arguments(args, "sweep")
         check_spec_options(args)
@@ -528,7 +529,7 @@ def run(args) -> int:
                 try:
                     check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
                 except SweepEventsError as error:  # an event file missing or damaged: bad input, 1
-                    print(f"tegrasp sweep: error: {error_line(str(error))}", file=sys.stderr)
+                    print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
                     return 1
             if args.events:
                 trial_function = bound_arguments(trial_function, events_dir=args.events)
@@ -566,7 +567,7 @@ def run(args) -> int:
         for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):
             print(f"wrote {path}")
     except ValueError as error:  # no trial of the sweep left a record: no reports
-        print(f"tegrasp sweep: {error}", file=sys.stderr)
+        print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
         return 1
     if summary.unwritten_log is not None:  # a file that cannot be written: exit 1
         print(unwritten_log_error(args.logs, summary.unwritten_log, len(summary.unfinished)),

@@ -244,7 +244,7 @@ def test_a_scheduler_address_that_does_not_parse_is_a_usage_error(command, addre
     code, text = run_cli([command, "--scheduler", address, "--out", str(tmp_path / "o")],
                          capfd)
     assert code == 2, text
-    assert_one_line_error(code, text, f"tegrasp {command}: error: argument --scheduler: "
+    assert_one_line_error(code, text, f"tegrasp: error: argument --scheduler: "
                           f"{address!r}: {words} (see tegrasp {command} --help)")
     assert "could not be cast" not in text and "Invalid IPv6" not in text, text
     assert not (tmp_path / "o").exists()
@@ -262,7 +262,7 @@ def test_a_scheduler_address_that_parses_and_is_refused_stays_bad_input(address,
     code, text = run_cli(["sweep", "--scheduler", address, "--out", str(tmp_path / "o"),
                           *FAKE_TRIALS], capfd)
     assert code == 1, text
-    assert_one_line_error(code, text, f"tegrasp sweep: error: --scheduler {address!r} {words}")
+    assert_one_line_error(code, text, f"tegrasp: error: --scheduler {address!r} {words}")
     assert "Port out of range" not in text and "--help" not in text, text
 
 
