@@ -1,6 +1,6 @@
-"""The command line's argument parser: one for `tegrasp` and each of its subcommands (and
-the standalone `python -m tegrasp_drake.commands.sweep`), so that each refuses a command
-line that does not parse alike, in one line (docs/user-guide.md, "Exit codes")."""
+"""The command line's argument parser: one for `tegrasp` and each of its subcommands, so that
+each refuses a command line that does not parse alike, in one line (docs/user-guide.md, "Exit
+codes")."""
 
 import argparse
 

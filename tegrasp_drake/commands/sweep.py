@@ -17,7 +17,6 @@ from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.run_folder import logs_folder_problem, other_run_problem
 from tegrasp_drake.commands.events_option import check_events_folder
-from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
@@ -576,18 +575,13 @@ def run(args) -> int:
     return 1 if summary.errors or summary.unfinished else 0
 
 
-def main(argv=None) -> int:
-    """`python -m tegrasp_drake.commands.sweep [options]`, the same as `tegrasp sweep`."""
-    from tegrasp_drake.commands.command_line_parser import CommandLineParser
-    parser = CommandLineParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0],
-                               epilog=EPILOG,
-                               formatter_class=argparse.RawDescriptionHelpFormatter)
-    add_arguments(parser)
-    add_verbosity_arguments(parser)
-    args = parser.parse_args(argv)
-    configure_logging(args)
-    return run(args)
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    # `python -m tegrasp_drake.commands.sweep [options]` is `tegrasp sweep [options]`, run in
+    # this process by the command line's own entry (`python -m tegrasp_drake`): its error
+    # boundary, exit codes and handling of SIGTERM and SIGHUP, which a main of this module's
+    # own lacked (a SIGTERM ended the process by the signal, exit -15, its staging left).
+    import os
+    original = list(getattr(sys, "orig_argv", []))
+    flags = original[1:original.index("-m")] if "-m" in original else []
+    os.execv(sys.executable, [sys.executable, *flags, "-m", "tegrasp_drake", "sweep",
+                              *sys.argv[1:]])
