@@ -60,7 +60,7 @@ def refuse_empty_values(parser: argparse.ArgumentParser, args) -> None:
         what = (PATH_ARGUMENTS.get((args.command, action.dest), PATH_ARGUMENTS[action.dest])
                 if action.dest in PATH_ARGUMENTS else
                 f"a value, or leave {name} out" if action.option_strings else "a value")
-        command.exit(2, f"{command.prog}: error: {name} '' is empty; give {what}\n")
+        command.error(f"{name} '' is empty; give {what}")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -144,7 +144,7 @@ def _run_command(argv, process_ends: bool = False) -> int:
             name = str(interrupt) if str(interrupt).startswith("SIG") else "SIGINT"
             return _interrupted(name)
         except SystemExit as exit_:
-            if isinstance(exit_.code, str):  # "tegrasp: error: ...", one bounded line
+            if isinstance(exit_.code, str):  # ERROR_LEAD + what, one bounded line
                 raise SystemExit(error_line(exit_.code)) from None
             raise
         except GeneratorExit:
@@ -152,7 +152,8 @@ def _run_command(argv, process_ends: bool = False) -> int:
         except UserPathError as error:  # a file or folder the user named, said in one line
             if interrupt_received():
                 return _interrupted(interrupt_received())
-            print(f"tegrasp: error: {error_line(str(error))}", file=sys.stderr, flush=True)
+            print(f"{error_boundary.ERROR_LEAD}{error_line(str(error))}", file=sys.stderr,
+                  flush=True)
             return EXIT_ERROR
         except BrokenPipeError:
             if output_streams.output_closed():  # the reader of our output left: main ends quietly
@@ -165,7 +166,7 @@ def _run_command(argv, process_ends: bool = False) -> int:
                 return _interrupted(interrupt_received())
             if isinstance(error, OSError) and error.errno == errno.ENAMETOOLONG:
                 # a path the user gave, wherever a command first used it
-                print(f"tegrasp: error: {error_boundary.path_too_long_line(error)}",
+                print(f"{error_boundary.ERROR_LEAD}{error_boundary.path_too_long_line(error)}",
                       file=sys.stderr, flush=True)
                 return EXIT_ERROR
             return error_boundary.internal_error(error, argv)

@@ -19,10 +19,13 @@ def environment() -> dict:
     return {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in paths if p)}
 
 
-def kill_after_some_records(command, record_files, minimum: int, timeout_s: float):
+def kill_after_some_records(command, record_files, minimum: int, timeout_s: float,
+                            signal_number: int = signal.SIGKILL):
     """Starts `command` in its own process group and SIGKILLs the group (the parent and its
     workers) once `record_files()` lists `minimum` records; waits until the whole group is
-    gone (its folder lock released with it). Returns (records at the kill, return code)."""
+    gone (its folder lock released with it). Returns (records at the kill, return code).
+    Another `signal_number` (SIGTERM, SIGHUP) goes to the parent alone, as `kill PID` sends it,
+    and the parent is left to stop as it does on it."""
     process = subprocess.Popen(command, env=environment(), stdout=subprocess.DEVNULL,
                                stderr=subprocess.DEVNULL, start_new_session=True)
     deadline = time.monotonic() + timeout_s
@@ -31,7 +34,10 @@ def kill_after_some_records(command, record_files, minimum: int, timeout_s: floa
             assert process.poll() is None, "the command ended before it could be killed"
             assert time.monotonic() < deadline, "no records appeared in time"
             time.sleep(0.005)
-        os.killpg(process.pid, signal.SIGKILL)
+        if signal_number == signal.SIGKILL:
+            os.killpg(process.pid, signal.SIGKILL)
+        else:
+            os.kill(process.pid, signal_number)
         count = len(record_files())
         process.wait(timeout=timeout_s)
     finally:

@@ -171,7 +171,7 @@ def test_a_long_script_is_accepted_when_confirmed():
 
 
 @pytest.mark.parametrize("text, expected", [
-    ("ready_timeout: 1.0e+9\n", "field 'ready_timeout' must lie in (0, 600] s"),
+    ("ready_timeout: 1.0e+9\n", "field 'ready_timeout' must lie in [1.13333, 600] s"),
     ("gripper: {device_id: 0}\n", "field 'gripper.device_id' must lie in [1, 247]"),
     ("realtime_priority: 100\n", "field 'realtime_priority' must lie in [1, 99]"),
     ("arm: {tracker: {max_joint_speed: [1, 1, 1, 1, 1, 1]}}\n",
@@ -219,8 +219,8 @@ def test_a_hardware_config_changed_after_loading_is_refused():
     from tegrasp_drake import MakeHardwareStation
     config = HardwareStationConfig()
     config.watchdog.arm_timeout = -5.0
-    with pytest.raises(ConfigError, match="MakeHardwareStation: argument 'config': field "
-                       r"'watchdog.arm_timeout' must be positive \[s\]"):
+    with pytest.raises(ConfigError, match=r"^MakeHardwareStation: config: field "
+                       r"'watchdog.arm_timeout' must lie in \(0.02, 10\] s"):
         MakeHardwareStation(config)
 
 

@@ -1,6 +1,6 @@
-"""The command line's argument parser: one for `tegrasp` and each of its subcommands (and
-the standalone `python -m tegrasp_drake.commands.sweep`), so that each refuses a command
-line that does not parse alike, in one line (docs/user-guide.md, "Exit codes")."""
+"""The command line's argument parser: one for `tegrasp` and each of its subcommands, so that
+each refuses a command line that does not parse alike, in one line (docs/user-guide.md, "Exit
+codes")."""
 
 import argparse
 
@@ -9,12 +9,18 @@ from tegrasp_drake.rig.usage_parser import UsageParser
 
 class CommandLineParser(UsageParser):
     """The `tegrasp` command's parser (and, by add_subparsers, each subcommand's): a command
-    line that does not parse ends in one line, `tegrasp sweep: error: <what> (see tegrasp
-    sweep --help)` (rig/usage_parser.py)."""
+    line that does not parse ends in one line, `tegrasp: error: <what> (see tegrasp sweep
+    --help)` (rig/usage_parser.py), led as every error of the command is
+    (error_boundary.ERROR_LEAD)."""
+
+    def error_lead(self) -> str:
+        from tegrasp_drake.commands.error_boundary import ERROR_LEAD
+        return ERROR_LEAD
 
     def parse_args(self, args=None, namespace=None):
         """argparse's parse_args, an argument no parser knows refused by the subcommand's
-        parser (`tegrasp record-events: error: unrecognized arguments: ...`), not the top's."""
+        parser (`tegrasp: error: unrecognized arguments: ... (see tegrasp record-events
+        --help)`), not the top's."""
         parsed, extras = self.parse_known_args(args, namespace)
         if extras:
             subparsers = [a for a in self._actions

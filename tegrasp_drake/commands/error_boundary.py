@@ -14,6 +14,11 @@ EXIT_ERROR = 1  # bad input refused, a file not writable, a device that did not 
 EXIT_USAGE = usage_parser.EXIT_USAGE  # a command line that does not parse
 EXIT_INTERNAL_ERROR = 70  # an exception no command foresaw (sysexits.h EX_SOFTWARE)
 
+# How every error line of `tegrasp` and its subcommands starts, whoever refuses (argparse's
+# usage errors, a command's checks, the boundary): one documented form (docs/user-guide.md,
+# "Exit codes"). A usage error names its subcommand in its pointer, `(see tegrasp sweep --help)`.
+ERROR_LEAD = "tegrasp: error: "
+
 
 def path_too_long_line(error: OSError) -> str:
     """The one line for a path the file system refused as too long (ENAMETOOLONG): only a

@@ -51,7 +51,7 @@ def run(args) -> int:
     from tegrasp_drake.sensitivity.report import write_sensitivity_report
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
-    with refusals_said("sensitivity") as refused:
+    with refusals_said() as refused:
         check_runner_arguments(args, "sensitivity")
         with scheduler_connection(args, "sensitivity") as scheduler:
             spec = LoadSensitivitySpec(args.spec)

@@ -10,12 +10,13 @@ import argparse
 import contextlib
 import dataclasses
 import importlib
+import re
 import sys
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.run_folder import logs_folder_problem, other_run_problem
 from tegrasp_drake.commands.events_option import check_events_folder
-from tegrasp_drake.commands.verbosity import add_verbosity_arguments, configure_logging
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
@@ -33,6 +34,7 @@ from tegrasp_drake.sweep.runner import (
     check_sweep_folder,
     run_benchmark,
     run_sweep,
+    scheduler_address,
     summary_text,
 )
 from tegrasp_drake.sweep.spec import (
@@ -83,7 +85,9 @@ def add_runner_arguments(parser: argparse.ArgumentParser, *, default_out: str) -
     parser.add_argument("--out", default=default_out, metavar="DIR",
                         help=f"results folder; re-running resumes it (default: {default_out})")
     parser.add_argument("--scheduler", metavar="tcp://HOST:PORT", type=scheduler_option,
-                        help="run on this Dask distributed scheduler (the 'dask' extra)")
+                        help="run on this Dask distributed scheduler, tcp://HOST:PORT or "
+                             "HOST:PORT "
+                             "(the 'dask' extra)")
     parser.add_argument("--no-progress", action="store_true",
                         help="no progress bar (there is none off a terminal either)")
     parser.add_argument("--format", choices=FIGURE_FORMATS, default="png",
@@ -228,7 +232,7 @@ def unwritten_log_error(logs, unwritten_log: str, left: int | None = None) -> st
     """The one error line of a sweep that stopped at a --logs copy it could not write
     ("PATH: reason", SweepSummary.unwritten_log), `left` trials unrun."""
     left_words = "" if left is None else f" ({left} trial(s) left for the next run)"
-    return (f"tegrasp sweep: error: --logs {logs}: cannot write the trial log {unwritten_log}; "
+    return (f"{ERROR_LEAD}--logs {logs}: cannot write the trial log {unwritten_log}; "
             f"its trial's result is recorded and the sweep stopped{left_words}: free space "
             "or give another --logs (a recorded trial's log is made again only in a new --out)")
 
@@ -259,27 +263,55 @@ DASK_PROTOCOLS = ("tcp",)
 OTHER_DASK_PROTOCOLS = ("tls", "ucx", "ws", "wss")
 
 
-SCHEDULER_FORM = "give tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786"
+SCHEDULER_FORM = "give tcp://HOST:PORT or HOST:PORT, e.g. tcp://127.0.0.1:8786"
+
+# A HOST's name (RFC 1123): dot-separated labels of letters, digits and inner hyphens, each
+# at most 63 characters, 253 in all; or an IP address (an IPv6 one in brackets).
+_HOST_LABEL = re.compile(r"^(?!-)[A-Za-z0-9-]{1,63}(?<!-)$")
+
+
+def _host_problem(host: str, bracketed: bool) -> str | None:
+    """Why `host` (of tcp://HOST:PORT; `bracketed`: written [HOST]) names no host, or None."""
+    import ipaddress
+    try:
+        address = ipaddress.ip_address(host)
+    except ValueError:
+        address = None
+    if bracketed:
+        return None if address is not None and address.version == 6 else (
+            f"HOST [{shown(host)[1:-1]}] is not an IPv6 address")
+    if address is not None:
+        return None
+    labels = host.removesuffix(".").split(".")
+    if len(host) > 253 or not all(_HOST_LABEL.match(label) for label in labels):
+        return (f"HOST {shown(host)} is not a host name (letters, digits, '-' and '.') nor "
+                "an IP address")
+    return None
 
 
 def _scheduler_parts(address: str):
-    """(URL parts, HOST, PORT text) of `address` read as tcp://HOST:PORT, or (None, words)
-    when it has no such form (scheduler_form_problem); (None, None) for another protocol,
-    whose address scheduler_problem refuses by its protocol, not its form."""
+    """(URL parts, HOST, PORT text) of `address` read as tcp://HOST:PORT (HOST:PORT without
+    a protocol: scheduler_address), or (None, words) when it has no such form
+    (scheduler_form_problem); (None, None) for another protocol, whose address
+    scheduler_problem refuses by its protocol, not its form."""
     import urllib.parse
     if not address.strip():
         return None, "the address is blank"
+    address = scheduler_address(address)
     scheme, separator, _ = address.partition("://")
-    if not separator or not scheme:
-        return None, "it has no PROTOCOL:// (a Dask scheduler's address is a URL)"
+    if not scheme:
+        return None, "it has no PROTOCOL before its :// (a Dask scheduler's is tcp://)"
     if scheme.lower() not in DASK_PROTOCOLS:
         return None, None
     try:
         parts = urllib.parse.urlsplit(address)
-    except ValueError:  # an unclosed '[' of an IPv6 HOST
+    except ValueError:  # an unclosed '[' of an IPv6 HOST, or no IPv6 address in [...]
+        if "]" in address:
+            return None, "its [HOST] is not an IPv6 address"
         return None, "its HOST has a '[' without its ']'"
     where = parts.netloc.rpartition("@")[2]
-    if where.startswith("["):
+    bracketed = where.startswith("[")
+    if bracketed:
         host, _, rest = where[1:].partition("]")
         if rest and not rest.startswith(":"):
             return None, f"{shown(rest)} follows its [HOST] where ':PORT' belongs"
@@ -293,6 +325,9 @@ def _scheduler_parts(address: str):
         return None, "it has no port"
     if not (port.isascii() and port.isdecimal()):
         return None, f"port {shown(port)} is not a number"
+    problem = _host_problem(host, bracketed)
+    if problem:
+        return None, problem
     return parts, host, port
 
 
@@ -305,8 +340,9 @@ def scheduler_form_problem(address: str) -> str | None:
 
 
 def scheduler_option(text: str) -> str:
-    """argparse's type of --scheduler: the address as given, or a usage error (exit 2) when
-    it does not parse (scheduler_form_problem); '' is left to the refusal of empty values,
+    """argparse's type of --scheduler: the address as given (HOST:PORT is tcp://HOST:PORT:
+    runner.scheduler_address), or a usage error (exit 2) when it does not parse
+    (scheduler_form_problem); '' is left to the refusal of empty values,
     text holding a control character to usage_parser.argument_text_problem (exit 2)."""
     from tegrasp_drake.rig.typed_yaml import text_problem
     problem = scheduler_form_problem(text) if text and not text_problem(text) else None
@@ -321,6 +357,7 @@ def scheduler_problem(address: str) -> str | None:
     protocol is read case-insensitively, as connect_scheduler passes it on (in lower case)."""
     if not address.strip():
         return "is empty"
+    address = scheduler_address(address)
     form = scheduler_form_problem(address)
     if form:
         return f"is not an address: {form}"
@@ -362,9 +399,9 @@ class Refusal:
 
 
 @contextlib.contextmanager
-def refusals_said(command: str):
+def refusals_said():
     """The refusals of a command that runs sweeps (sweep, transfer, sensitivity), each said
-    in one line on stderr, `tegrasp COMMAND: error: ...`, with its exit code set on the
+    in one line on stderr, `tegrasp: error: ...` (ERROR_LEAD), with its exit code set on the
     Refusal yielded: 1 for bad input (OptionError), an output folder that cannot take a
     record (RecordPlaceError) and a scheduler lost mid-run
     (SchedulerLostError: the unfinished trials run again with the same command), 2 for a
@@ -376,13 +413,13 @@ def refusals_said(command: str):
     try:
         yield refusal
     except (OptionError, SchedulerLostError, RecordPlaceError) as error:
-        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
+        print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 1
     except (ConfigError, SweepError) as error:
-        print(f"tegrasp {command}: error: {error_line(str(error))}", file=sys.stderr)
+        print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 2
     except MemorizedEventError as error:
-        raise SystemExit(f"tegrasp: error: {error}") from None
+        raise SystemExit(f"{ERROR_LEAD}{error}") from None
 
 
 def check_runner_arguments(args, command: str) -> None:
@@ -476,7 +513,7 @@ def check_benchmark_options(args) -> None:
 
 
 def run(args) -> int:
-    with refusals_said("sweep") as refused:
+    with refusals_said() as refused:
         check_benchmark_options(args)  # before the scheduler is asked whether it answers
         check_runner_arguments(args, "sweep")
         check_spec_options(args)
@@ -491,7 +528,7 @@ def run(args) -> int:
                 try:
                     check_sweep_events([t.to_dict() for t in expand_trials(spec)], args.events)
                 except SweepEventsError as error:  # an event file missing or damaged: bad input, 1
-                    print(f"tegrasp sweep: error: {error_line(str(error))}", file=sys.stderr)
+                    print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
                     return 1
             if args.events:
                 trial_function = bound_arguments(trial_function, events_dir=args.events)
@@ -529,7 +566,7 @@ def run(args) -> int:
         for path in write_reports(args.out, summary.trial_ids, figure_format=args.format):
             print(f"wrote {path}")
     except ValueError as error:  # no trial of the sweep left a record: no reports
-        print(f"tegrasp sweep: {error}", file=sys.stderr)
+        print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
         return 1
     if summary.unwritten_log is not None:  # a file that cannot be written: exit 1
         print(unwritten_log_error(args.logs, summary.unwritten_log, len(summary.unfinished)),
@@ -538,18 +575,13 @@ def run(args) -> int:
     return 1 if summary.errors or summary.unfinished else 0
 
 
-def main(argv=None) -> int:
-    """`python -m tegrasp_drake.commands.sweep [options]`, the same as `tegrasp sweep`."""
-    from tegrasp_drake.commands.command_line_parser import CommandLineParser
-    parser = CommandLineParser(prog="tegrasp sweep", description=__doc__.split("\n\n")[0],
-                               epilog=EPILOG,
-                               formatter_class=argparse.RawDescriptionHelpFormatter)
-    add_arguments(parser)
-    add_verbosity_arguments(parser)
-    args = parser.parse_args(argv)
-    configure_logging(args)
-    return run(args)
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    # `python -m tegrasp_drake.commands.sweep [options]` is `tegrasp sweep [options]`, run in
+    # this process by the command line's own entry (`python -m tegrasp_drake`): its error
+    # boundary, exit codes and handling of SIGTERM and SIGHUP, which a main of this module's
+    # own lacked (a SIGTERM ended the process by the signal, exit -15, its staging left).
+    import os
+    original = list(getattr(sys, "orig_argv", []))
+    flags = original[1:original.index("-m")] if "-m" in original else []
+    os.execv(sys.executable, [sys.executable, *flags, "-m", "tegrasp_drake", "sweep",
+                              *sys.argv[1:]])

@@ -42,7 +42,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
-    with refusals_said("transfer") as refused:
+    with refusals_said() as refused:
         check_runner_arguments(args, "transfer")
         with scheduler_connection(args, "transfer") as scheduler:
             spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)

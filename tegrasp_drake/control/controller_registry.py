@@ -165,9 +165,8 @@ def controller_entry(controller: typing.Any,
     else:
         entry = _ENTRY_OF_CLASS.get(type(controller))
     if entry is None:
-        from tegrasp_drake.rig.echo import shorten
-        shown = (repr(controller) if isinstance(controller, str) else
-                 f"{type(controller).__name__} {shorten(repr(controller))}")
+        from tegrasp_drake.rig.echo import given
+        shown = repr(controller) if isinstance(controller, str) else given(controller)
         raise UnknownControllerError(
             f"{what}: {shown} is not one of {', '.join(CONTROLLER_NAMES)} (a controller's "
             "name, its config or its config class)")

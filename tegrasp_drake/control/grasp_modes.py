@@ -6,7 +6,7 @@ import enum
 
 from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.ranges import bounded, check_ranges
-from tegrasp_drake.rig.echo import shorten, shown
+from tegrasp_drake.rig.echo import given, shorten, shown
 
 
 class Mode(enum.IntEnum):
@@ -200,7 +200,7 @@ class Transition:
         `code` must name a rule of a registered controller's table)."""
         if not isinstance(entry, dict):
             raise ValueError(f"a transition is a mapping of {', '.join(_REQUIRED_KEYS)}, got "
-                             f"{type(entry).__name__} {shorten(repr(entry))}")
+                             f"{given(entry)}")
         missing = [key for key in _REQUIRED_KEYS if key not in entry]
         if missing:
             raise ValueError(f"lacks the field '{missing[0]}' (a transition holds "

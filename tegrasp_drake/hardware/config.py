@@ -8,6 +8,7 @@
 
 import dataclasses
 import ipaddress
+import math
 import os
 import stat
 import sys
@@ -24,10 +25,12 @@ from tegrasp_drake.rig.ranges import bounded, check_ranges, chosen
 from tegrasp_drake.modelgen.jaco2_dh import continuous_joints_problem
 from tegrasp_drake.hardware.jaco.jaco_lcm import (JACO_COMMAND_CHANNEL, JACO_LCM_PERIOD,
                                                   JACO_STATUS_CHANNEL)
-from tegrasp_drake.hardware.myrio.tactile_frame import FRAME_PERIOD_US
+from tegrasp_drake.hardware.myrio.tactile_frame import (COUNTS_SIZE, CRC_SIZE, FRAME_PERIOD_US,
+                                                        HEADER_SIZE)
 from tegrasp_drake.rig.jaco_velocity_tracker import JacoVelocityTrackerConfig
 from tegrasp_drake.robotiq import registers
-from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqModbusConfig
+from tegrasp_drake.hardware.robotiq.modbus_client import (ACTIVATION_MIN_S, MIN_PERIOD,
+                                                          RobotiqModbusConfig)
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance,
                                           require_own_tag, load_typed, loaded_with_overrides,
@@ -65,21 +68,56 @@ class JacoLcmDriver:
         return JACO_COMMAND_CHANNEL, JACO_STATUS_CHANNEL
 
 
+# A silence the watchdog may call a device's fault: more than this many of its update periods,
+# so that one late sample never trips it (the defaults, DEFAULT_TIMEOUTS, allow 5-20).
+WATCHDOG_MIN_PERIODS = 2
+
+# [s] the myRIO's frame period: one frame a millisecond (TACTILE_FRAME.md).
+TACTILE_FRAME_PERIOD_S = FRAME_PERIOD_US * 1e-6
+# [baud] what the myRIO's stream needs on a serial line, 8N1 (10 bits a byte): a frame
+# without counts every millisecond, and each finger's counts once per AD7147 sequence,
+# ~9.2 ms (TACTILE_FRAME.md: about 23 kB/s). A slower line falls ever further behind.
+TACTILE_STREAM_BAUD = math.ceil(10 * ((HEADER_SIZE + CRC_SIZE) / TACTILE_FRAME_PERIOD_S
+                                      + 2 * COUNTS_SIZE / 9.2e-3))
+# [frames] the most frames a burst may leave waiting: each is a millisecond of latency, and
+# one 0.5 s event window (Sec. III-A) late, a sample no longer meets the window it belongs to.
+TACTILE_MAX_BACKLOG = 500
+
+
 @public_dataclass
 @dataclasses.dataclass
 class SerialTactileDriver:
     """The myRIO tactile stream (hardware/myrio/TACTILE_FRAME.md) on a serial port, with an
     optional TactileCalibration YAML ("" for the defaults)."""
     port: str = "/dev/ttyACM0"
-    # 23 kB/s of frames is 25 % of 921600 baud (TACTILE_FRAME.md)
-    baudrate: int = bounded(921600, low=300, high=12_000_000, unit="baud")
+    # 23 kB/s of frames is 25 % of 921600 baud (TACTILE_FRAME.md). Low end: what the stream
+    # needs (TACTILE_STREAM_BAUD); on the USB port (CDC-ACM) the rate is nominal: leave the
+    # default. High: the fastest UART rates, 12 Mbaud.
+    baudrate: int = bounded(921600, low=TACTILE_STREAM_BAUD, high=12_000_000, unit="baud",
+                            why="at least the myRIO stream's ~23 kB/s, 8N1; at most 12 Mbaud")
     calibration_file: str = ""
-    # the receiver's `stale` flag: 50 frame periods (the watchdog has its own timeout)
-    stale_timeout: float = bounded(0.05, low=0.0, low_open=True, high=10.0, unit="s",
-                                   below="must be positive [s]")
+    # the receiver's `stale` flag: 50 frame periods (the watchdog has its own timeout). Low
+    # end: WATCHDOG_MIN_PERIODS frame periods (one late frame must not mark the stream stale);
+    # high: 10 s of silence is a stream gone.
+    stale_timeout: float = bounded(
+        0.05, low=WATCHDOG_MIN_PERIODS * TACTILE_FRAME_PERIOD_S, high=10.0, unit="s",
+        why=f"at least {WATCHDOG_MIN_PERIODS} of the myRIO's "
+            f"{number_text(TACTILE_FRAME_PERIOD_S)} s frame periods")
     # frames left waiting in a burst, so the latency is at most 8 ms with no sample lost
-    max_backlog: int = bounded(8, low=0, high=100_000, unit="frames",
+    max_backlog: int = bounded(8, low=0, high=TACTILE_MAX_BACKLOG, unit="frames",
+                               why="a frame a millisecond, at most one 0.5 s event window late",
                                below="must be zero or a positive number of frames")
+
+
+def _watchdog_timeout(default: float, updates: str, period: float):
+    """A device's watchdog timeout field [s]: longer than WATCHDOG_MIN_PERIODS of the
+    device's `updates` (in words), one each `period` [s], so one late update never trips it
+    (watchdog_timeouts_problem checks the gripper's against its configured timing too); at
+    most 10 s, a silence that long is a device gone."""
+    least = WATCHDOG_MIN_PERIODS * period
+    return bounded(default, low=least, low_open=True, high=10.0, unit="s",
+                   why=f"longer than {WATCHDOG_MIN_PERIODS} of {updates}, "
+                       f"{number_text(period)} s each")
 
 
 @public_dataclass
@@ -87,13 +125,17 @@ class SerialTactileDriver:
 class DeviceWatchdogConfig:
     """Silence [s] after which a device trips the watchdog (hardware/watchdog.py), and the
     extra time a device may take to say anything after the start."""
-    arm_timeout: float = bounded(DEFAULT_TIMEOUTS["arm"], low=0.0, low_open=True, high=10.0,
-                                 unit="s", below="must be positive [s]")
-    gripper_timeout: float = bounded(DEFAULT_TIMEOUTS["gripper"], low=0.0, low_open=True,
-                                     high=10.0, unit="s", below="must be positive [s]")
-    tactile_timeout: float = bounded(DEFAULT_TIMEOUTS["tactile"], low=0.0, low_open=True,
-                                     high=10.0, unit="s", below="must be positive [s]")
-    # [s] extra time a device may take to be first heard from after the start
+    # the JACO2 driver's statuses at 100 Hz (JACO_LCM_PERIOD)
+    arm_timeout: float = _watchdog_timeout(DEFAULT_TIMEOUTS["arm"], "the JACO2's statuses",
+                                           JACO_LCM_PERIOD)
+    # the 2F-85's status reads at up to 200 Hz (MIN_PERIOD)
+    gripper_timeout: float = _watchdog_timeout(DEFAULT_TIMEOUTS["gripper"],
+                                               "the 2F-85's status reads", MIN_PERIOD)
+    # the myRIO's frames, one a millisecond
+    tactile_timeout: float = _watchdog_timeout(DEFAULT_TIMEOUTS["tactile"],
+                                               "the myRIO's frames", TACTILE_FRAME_PERIOD_S)
+    # [s] extra time a device may take to be first heard from after the start: none needed
+    # (the station waits for each before the loop starts), at most a minute
     startup_grace: float = bounded(1.0, low=0.0, high=60.0, unit="s",
                                    below="must be zero or positive [s]")
 
@@ -111,12 +153,25 @@ class HardwareStationConfig:
     gripper: RobotiqModbusConfig = dataclasses.field(default_factory=RobotiqModbusConfig)
     tactile: SerialTactileDriver = dataclasses.field(default_factory=SerialTactileDriver)
     watchdog: DeviceWatchdogConfig = dataclasses.field(default_factory=DeviceWatchdogConfig)
-    # [s] before the loop starts, for the arm's status, gripper activation and pad zeroing
-    ready_timeout: float = bounded(10.0, low=0.0, low_open=True, high=600.0, unit="s",
-                                   below="must be positive [s]")
+    # [s] before the loop starts, for the arm's status, gripper activation and pad zeroing.
+    # Low end: the 2F-85's fastest activation (ACTIVATION_MIN_S), which the wait holds; high:
+    # ten minutes, more than any device's start-up (a longer wait is a device not coming up).
+    ready_timeout: float = bounded(
+        10.0, low=ACTIVATION_MIN_S, high=600.0, unit="s",
+        why=f"at least the 2F-85's fastest activation, {number_text(ACTIVATION_MIN_S)} s")
     # "fifo", "nice" or "normal", each falling back to the next (hardware/realtime.py)
     scheduling: str = chosen("fifo", names=SCHEDULING_POLICIES)
     realtime_priority: int = bounded(10, low=1, high=99, why="SCHED_FIFO priorities, sched(7)")
+
+    def check_relations(self, source: str) -> None:
+        """ConfigError naming the field unless the fields are in their ranges and relate as
+        a loaded config's timings must (request and watchdog timeouts against the baud rate
+        and the device periods): public functions (MakeHardwareStation) call it on a config
+        changed since it was loaded. The LCM URL and the ports are checked when opened."""
+        check_ranges(self, source)
+        problem = (gripper_request_timeout_problem(self) or watchdog_timeouts_problem(self))
+        if problem:
+            raise ConfigError(f"{source}: {problem}")
 
 
 # The LCM providers (lcm_create's URL schemes) a URL may name, by its text, before LCM is
@@ -475,11 +530,6 @@ def _terminal_device(rdev: int) -> bool | None:
     return None
 
 
-# A silence the watchdog may call a device's fault: more than this many of its update periods,
-# so that one late sample never trips it (the defaults, DEFAULT_TIMEOUTS, allow 5-20).
-WATCHDOG_MIN_PERIODS = 2
-
-
 def gripper_read_period(config: HardwareStationConfig) -> float:
     """[s] between two of the gripper's status reads at the most: gripper.period, or the time
     a read and a command write take on the wire at gripper.baudrate if that is longer."""
@@ -494,7 +544,7 @@ def device_update_periods(config: HardwareStationConfig) -> dict[str, float]:
     statuses (JACO_LCM_PERIOD, the driver's 100 Hz), the gripper's reads
     (gripper_read_period), the myRIO's frames (TACTILE_FRAME.md, one a millisecond)."""
     return {"arm": JACO_LCM_PERIOD, "gripper": gripper_read_period(config),
-            "tactile": FRAME_PERIOD_US * 1e-6}
+            "tactile": TACTILE_FRAME_PERIOD_S}
 
 
 def gripper_request_timeout_problem(config: HardwareStationConfig,

@@ -18,7 +18,7 @@ import threading
 import types
 import typing
 
-from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.echo import given, shown
 from tegrasp_drake.rig.ranges import check_ranges, number_problem, python_scalar
 
 # A file or folder argument: text or a path object (pathlib.Path, os.DirEntry).
@@ -160,8 +160,7 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
             if not _matches(item, hint):
                 where, expected, wrong = _mismatch(argument, item, hint)
                 raise TypeError(f"{name}: argument '{where}' must be "
-                                f"{_describe_hint(expected, wrong)}, got {type(wrong).__name__} "
-                                f"{shown(wrong)}")
+                                f"{_describe_hint(expected, wrong)}, got {given(wrong)}")
     for argument, value in bound.arguments.items():  # a config's fields, changed since?
         if _mutable_dataclass(value):
             from tegrasp_drake.rig.typed_yaml import check_instance
@@ -361,6 +360,10 @@ def _describe_hint(hint, given=_UNKNOWN) -> str:
         article = "an" if name[0] in "AEIOUaeiou" else "a"
         qualifier = _collection_qualifier(given, arguments[0] if arguments else None)
         return f"{article} {name.lower()} of {items}{qualifier}"
+    if name == "tuple" and arguments and Ellipsis not in arguments:  # tuple[float, float]
+        return (f"a tuple of {len(arguments)} ("
+                f"{', '.join(_describe_hint(member) for member in arguments)})"
+                f"{_collection_qualifier(given, None)}")
     # Class names without their modules: Mapping[str, MemorizedEvent].
     return re.sub(r"\b(?:[a-z_]\w*\.)+([A-Za-z_]\w*)", r"\1", str(hint))
 
@@ -542,7 +545,7 @@ def _check_scalar_fields(instance, scalar: dict, source: str) -> None:
         if not _matches(python_scalar(value), hint):
             from tegrasp_drake.rig.typed_yaml import ConfigTypeError
             raise ConfigTypeError(f"{source}: field '{name}' must be {_describe_hint(hint)}, "
-                            f"got {type(value).__name__} {shown(value)}")
+                                  f"got {given(value)}")
 
 
 def _expects_collection(hint) -> bool:

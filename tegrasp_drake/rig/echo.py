@@ -62,3 +62,33 @@ def shown(value) -> str:
         return _repr_bytes(shorten(repr(value)))
     except Exception:  # any repr may fail (a huge int inside a list); the message must not
         return f"<a {type(value).__name__} that cannot be written as text>"
+
+
+# The types whose values a message echoes after their type's name (`str 'box'`, `int 5`,
+# `list [1]`): what was given is then both its kind and its text.
+_ECHOED_TYPES = (str, bytes, bytearray, bool, int, float, complex, list, tuple, dict, set,
+                 frozenset)
+
+
+def given(value) -> str:
+    """What a user gave, in the words that follow "got" in an error: `None`; a text, number or
+    plain collection by its type and its echo (`str 'box'`, `int -3`, `list [1]`); an enum's
+    member by its name (`Mode.HOLD`); a path by its type and text; any other object (a config
+    of the wrong class, a Drake system) by its class alone (`a HardwareStationConfig`), whose
+    repr would run for lines."""
+    import enum
+    if value is None:
+        return "None"
+    if isinstance(value, enum.Enum):
+        return f"{type(value).__name__}.{value.name}"
+    if isinstance(value, _ECHOED_TYPES):
+        return f"{type(value).__name__} {shown(value)}"
+    if isinstance(value, os.PathLike):
+        try:
+            return f"{type(value).__name__} {shown(os.fspath(value))}"
+        except Exception:  # noqa: BLE001: a __fspath__ of its own that raises
+            pass
+    if type(value).__module__ == "numpy":  # an array or a NumPy scalar: its values say it
+        return f"{type(value).__name__} {shown(value)}"
+    name = type(value).__name__
+    return f"{'an' if name[:1] in 'AEIOUaeiou' else 'a'} {name}"

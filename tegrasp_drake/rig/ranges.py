@@ -11,7 +11,7 @@ import types
 import typing
 
 from tegrasp_drake.rig.integer_text import integer_beyond_problem
-from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.echo import given, shown
 from tegrasp_drake.rig.number_text import number_text
 
 _KEY = "tegrasp_range"
@@ -206,7 +206,7 @@ def number_problem(value) -> str | None:
     asks this first, so that such a value is never judged, or refused, by its size."""
     value = python_scalar(value)
     if not _is_number(value):
-        return f"must be a finite number, got {type(value).__name__} {shown(value)}"
+        return f"must be a finite number, got {given(value)}"
     beyond = integer_beyond_problem(value)
     if beyond is not None:
         return beyond
@@ -308,11 +308,10 @@ def _check_length(value, field: dataclasses.Field, source: str, path: str) -> No
         return
     length, items = field.metadata[_LENGTH_KEY]
     if not isinstance(value, (list, tuple)) or len(value) != length:
-        count = (f"{len(value)} elements" if isinstance(value, (list, tuple))
-                 else type(value).__name__)
+        count = (f"{len(value)} elements: {shown(value)}" if isinstance(value, (list, tuple))
+                 else given(value))
         from tegrasp_drake.rig.typed_yaml import ConfigError  # pydrake: loaded when checking
-        raise ConfigError(f"{source}: field '{path}' must hold {length} {items}, got {count}: "
-                          f"{shown(value)}")
+        raise ConfigError(f"{source}: field '{path}' must hold {length} {items}, got {count}")
 
 
 def _field_default(field: dataclasses.Field):
@@ -345,15 +344,14 @@ def _check_value(value, declared: "Range | Choice", source: str, path: str,
     if isinstance(declared, Choice):
         if value not in declared.names and not numbers_only:
             raise ConfigError(f"{source}: field '{path}' {declared.words()}, got "
-                              f"{type(value).__name__} {shown(value)}")
+                              f"{given(value)}")
         return
     if declared.length is not None and not numbers_only and (
             not isinstance(value, (list, tuple)) or len(value) != declared.length):
-        count = (f"{len(value)} elements" if isinstance(value, (list, tuple))
-                 else type(value).__name__)
+        count = (f"{len(value)} elements: {shown(value)}" if isinstance(value, (list, tuple))
+                 else given(value))
         raise ConfigError(f"{source}: field '{path}' must hold {declared.length} numbers"
-                          f"{' [' + declared.unit + ']' if declared.unit else ''}, got "
-                          f"{count}: {shown(value)}")
+                          f"{' [' + declared.unit + ']' if declared.unit else ''}, got {count}")
     for item_path, item in _values(value, path):
         item = python_scalar(item)
         if item is None:

@@ -1007,4 +1007,5 @@ def _field(path: str) -> str:
 
 
 def _describe(value) -> str:
-    return f"{type(value).__name__} {shown(value)}"
+    from tegrasp_drake.rig.echo import given
+    return given(value)

@@ -60,10 +60,14 @@ class UsageParser(argparse.ArgumentParser):
             self.refuse(problem)
         return parsed, extras
 
+    def error_lead(self) -> str:
+        """How this parser's error lines start: `PROG: error: `."""
+        return f"{self.prog}: error: "
+
     def refuse(self, message):
         """Ends a command line that parses, whose value `message` says cannot be used: one
         line on stderr and EXIT_BAD_INPUT."""
-        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
+        self.exit(EXIT_BAD_INPUT, f"{self.error_lead()}{message}\n")
 
     def _get_values(self, action, arg_strings):
         """argparse's values of `action` from its arguments' text, an argument holding a
@@ -80,7 +84,7 @@ class UsageParser(argparse.ArgumentParser):
 
     def error(self, message):
         from tegrasp_drake.rig.files import error_line
-        self.exit(EXIT_USAGE, f"{self.prog}: error: {error_line(message)} "
+        self.exit(EXIT_USAGE, f"{self.error_lead()}{error_line(message)} "
                               f"(see {self.prog} --help)\n")
 
 

@@ -583,12 +583,79 @@ def _dask_distributed():
     return distributed
 
 
+def scheduler_address(text: str) -> str:
+    """`text`, a Dask scheduler's address, as a URL: HOST:PORT (no PROTOCOL://) is
+    tcp://HOST:PORT, as distributed reads it; any other text as given."""
+    return text if "://" in text or not text.strip() else f"tcp://{text}"
+
+
+# [s] the most a scheduler's host name may take to resolve: a resolver that says nothing
+# for this long will not (glibc's default: 5 s a try, 2 tries).
+DASK_RESOLVE_BOUND_S = 10.0
+
+
+def _tcp_reach_problem(address: str) -> str | None:
+    """Why nothing can be reached at `address`, a tcp://HOST:PORT URL, in words, or None
+    (another protocol, or something there accepts a connection): a HOST that does not
+    resolve within DASK_RESOLVE_BOUND_S, a port where nothing listens (refused at once), no
+    answer within DASK_CONNECT_TIMEOUT_S. distributed retries each of these until its own
+    timeout; this says it at once, or after one try. Each step runs on a daemon thread,
+    abandoned when its bound passes (the resolver's call cannot be interrupted)."""
+    import socket
+    import urllib.parse
+    if not address.startswith("tcp://"):
+        return None
+    try:
+        parts = urllib.parse.urlsplit(address)
+        host, port = parts.hostname, parts.port
+    except ValueError:
+        return None  # the address's form is the command line's to check
+    if host is None or port is None:
+        return None
+
+    def bounded(call, bound: float):
+        done = {}
+
+        def run():
+            try:
+                done["value"] = call()
+            except OSError as error:
+                done["error"] = error
+        thread = threading.Thread(target=run, name="tegrasp-dask-reach", daemon=True)
+        thread.start()
+        thread.join(bound)
+        return done if not thread.is_alive() else None
+
+    found = bounded(lambda: socket.getaddrinfo(host, port, type=socket.SOCK_STREAM),
+                    DASK_RESOLVE_BOUND_S)
+    if found is None:
+        return f"the host name {host} did not resolve within {DASK_RESOLVE_BOUND_S:.0f} s"
+    if "error" in found:
+        reason = found["error"].strerror or found["error"]
+        return f"the host name {host} does not resolve ({reason})"
+
+    def connect():
+        with socket.create_connection((host, port), timeout=DASK_CONNECT_TIMEOUT_S):
+            return True
+    connected = bounded(connect, DASK_CONNECT_TIMEOUT_S + 1.0)
+    if connected is None or isinstance(connected.get("error"), socket.timeout):
+        return f"nothing answered on port {port} within {DASK_CONNECT_TIMEOUT_S:.0f} s"
+    error = connected.get("error")
+    if isinstance(error, ConnectionRefusedError):
+        return f"nothing listens on port {port} (connection refused)"
+    if error is not None:
+        return f"{error.strerror or error}"
+    return None
+
+
 def connect_scheduler(scheduler: str,
                       announce: Callable[[], None] | None = None) -> DaskClient:
-    """A Client of the Dask scheduler at `scheduler` (its protocol read in any case);
+    """A Client of the Dask scheduler at `scheduler` (its protocol read in any case; HOST:PORT
+    without one is tcp://: scheduler_address);
     SweepError when the extra is missing,
-    the address cannot be reached, or what answers there is not a Dask scheduler (any error
-    of the handshake), all within DASK_ANSWER_BOUND_S of wall time. `announce` is called once
+    the address cannot be reached (_tcp_reach_problem: an unknown host or a refused port said
+    at once), or what answers there is not a Dask scheduler (any error of the handshake),
+    all within DASK_ANSWER_BOUND_S of wall time. `announce` is called once
     the extra is known to be installed, just before connecting (a command says there what it
     connects to: an address where nothing listens takes the whole bound). A command connects once,
     before its first trial or event recording, and hands the client to each sweep it runs
@@ -600,9 +667,13 @@ def connect_scheduler(scheduler: str,
     distributed = _dask_distributed()
     if announce is not None:
         announce()
-    made = {}
-    protocol, separator, rest = scheduler.partition("://")
+    made, started = {}, time.monotonic()
+    protocol, separator, rest = scheduler_address(scheduler).partition("://")
     address = protocol.lower() + separator + rest  # distributed knows "tcp", not "TCP"
+    problem = _tcp_reach_problem(address)
+    if problem:
+        raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {problem}; start "
+                         "`dask scheduler` there, or give the address it prints")
 
     def make_client():
         try:
@@ -612,7 +683,7 @@ def connect_scheduler(scheduler: str,
     connecting = threading.Thread(target=make_client, name="tegrasp-dask-connect",
                                   daemon=True)
     connecting.start()
-    connecting.join(DASK_ANSWER_BOUND_S)
+    connecting.join(max(DASK_ANSWER_BOUND_S - (time.monotonic() - started), 1.0))
     if connecting.is_alive():
         raise SweepError(f"the Dask scheduler at {scheduler} did not answer as one within "
                          f"{DASK_ANSWER_BOUND_S:.0f} s: give the address `dask scheduler` "
@@ -650,7 +721,8 @@ def hold_dask_logs() -> Callable[[], None]:
 
 
 def _scheduler_address(scheduler: str | DaskClient) -> str:
-    return scheduler if isinstance(scheduler, str) else scheduler.scheduler.address
+    return (scheduler_address(scheduler) if isinstance(scheduler, str)
+            else scheduler.scheduler.address)
 
 
 def _run_on_dask(trial_function, pending, scheduler: str | DaskClient):

@@ -8,6 +8,7 @@ import ast
 import os
 import pathlib
 import re
+import sys
 
 import pytest
 
@@ -451,13 +452,13 @@ def test_a_runner_option_refused_is_bad_input_as_for_every_command(tmp_path, cap
 # "Exit codes"); never the usage block.
 @pytest.mark.parametrize("argv, words", [
     (["sweep", "--base-seed", "1e3"],
-     "tegrasp sweep: error: argument --base-seed: '1e3' is not an integer "
+     "tegrasp: error: argument --base-seed: '1e3' is not an integer "
      "(see tegrasp sweep --help)"),
-    (["hardware", "--duration", "abc"], "tegrasp hardware: error: argument --duration:"),
+    (["hardware", "--duration", "abc"], "tegrasp: error: argument --duration:"),
     (["emulate", "robotiq", "--inject-fault", "abc"],
-     "tegrasp emulate: error: argument --inject-fault: 'abc': expected CODE@SECONDS"),
+     "tegrasp: error: argument --inject-fault: 'abc': expected CODE@SECONDS"),
     (["record-events", "--controller", "open_loop"],
-     "tegrasp record-events: error: unrecognized arguments: --controller open_loop "
+     "tegrasp: error: unrecognized arguments: --controller open_loop "
      "(see tegrasp record-events --help)"),
     (["no-such-command"], "tegrasp: error: argument command: invalid choice"),
 ])
@@ -470,6 +471,37 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     assert code == 2 and captured.out == "", captured
     assert captured.err.count("\n") == 1 and "usage:" not in captured.err, captured.err
     assert captured.err.startswith(words), captured.err
+    command = argv[0] if argv[0] != "no-such-command" else None
+    assert captured.err.endswith(f"(see tegrasp{' ' + command if command else ''} --help)\n")
+
+
+# Rule: every error of `tegrasp` and its subcommands starts with one lead, `tegrasp: error: `
+# (docs/user-guide.md, "Exit codes"), whoever refuses: argparse (a usage error, exit 2), the
+# check of empty values, a command's own refusal (exit 1), a sweep command's refusal of its
+# spec (exit 2) or option (exit 1), a file the user named.
+@pytest.mark.parametrize("argv, code", [
+    (["sweep", "--workers", "abc"], 2),
+    (["transfer", "spec.yaml", "--out", ""], 2),
+    (["sweep", "--workers", "0", *FAKE_TRIALS], 1),
+    (["sweep", "--spec", "empty.yaml", "--out", "o", *FAKE_TRIALS], 2),
+    (["sensitivity", "missing.yaml", "--out", "o"], 2),
+    (["hardware", "--config", "missing.yaml"], 1),
+    (["plot", "trial", "missing.npz"], 1),
+])
+def test_every_error_of_every_command_has_the_one_lead(argv, code, tmp_path, monkeypatch,
+                                                       capfd):
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "empty.yaml").write_text("")
+    try:
+        got = cli.main(argv)
+    except SystemExit as exit_:
+        got = exit_.code if isinstance(exit_.code, int) else 1
+        if isinstance(exit_.code, str):
+            print(exit_.code, file=sys.stderr)
+    captured = capfd.readouterr()
+    assert got == code, captured
+    lines = captured.err.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tegrasp: error: "), captured.err
 
 
 # Rule: `tegrasp --version` prints the package's version on standard output and exits 0,
@@ -681,7 +713,7 @@ def test_a_malformed_set_is_refused_as_a_command_line_that_does_not_parse(
     assert code == 2, text
     assert text.count("\n") == 1 and "unknown field" not in text, text
     assert text.startswith(
-        f"tegrasp {command}: error: argument {option}: '{assignment}': expected KEY=VALUE with "
+        f"tegrasp: error: argument {option}: '{assignment}': expected KEY=VALUE with "
         f"KEY a dotted field name such as {example} (see "), text
 
 
@@ -697,7 +729,7 @@ def test_a_byte_that_is_not_utf8_in_a_set_is_named_as_given(command, option, key
     assert code == 2, text
     assert text.count("\n") == 1 and "xdcff" not in text and "udcff" not in text, text
     assert text.startswith(
-        f"tegrasp {command}: error: argument {option}: '{key}=\\xff': byte 0xff (character "
+        f"tegrasp: error: argument {option}: '{key}=\\xff': byte 0xff (character "
         f"{len(key) + 2}, in the value) is not UTF-8; give the value in UTF-8 text (see "
         f"tegrasp {command} --help)"), text
     code, text = run_cli([command, option, "object.ma\udcffss=1"], capfd)
@@ -710,7 +742,7 @@ def test_a_byte_that_is_not_utf8_in_a_set_is_named_from_a_shell(tmp_path):
     done = tegrasp_in_child_process(["trial", "--set", "object.mass=\udcc3(",
                                      "--out", str(tmp_path / "t")])
     assert done.returncode == 2, done.stderr
-    assert done.stderr == ("tegrasp trial: error: argument --set: 'object.mass=\\xc3(': byte "
+    assert done.stderr == ("tegrasp: error: argument --set: 'object.mass=\\xc3(': byte "
                            "0xc3 (character 13, in the value) is not UTF-8; give the value in "
                            "UTF-8 text (see tegrasp trial --help)\n"), done.stderr
     assert not (tmp_path / "t").exists()

@@ -62,7 +62,7 @@ PROBES = [  # (name, files made first, argv, words the one error line holds)
     ("7 sweep --scheduler not a URL", None,
      ["sweep", "--scheduler", "notaurl", "--objects", "box", "--controllers", "heuristic",
       "--attempts", "1", "--out", "sw"],
-     ["argument --scheduler: 'notaurl': it has no PROTOCOL://", "give tcp://HOST:PORT"]),
+     ["argument --scheduler: 'notaurl': it has no port", "give tcp://HOST:PORT"]),
     ("7 sweep --out a file", _write("afile", "x"),
      ["sweep", "--objects", "box", "--controllers", "heuristic", "--attempts", "1",
       "--out", "afile"], ["--out afile: afile is not a folder"]),

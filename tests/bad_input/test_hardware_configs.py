@@ -25,9 +25,9 @@ from tests.bad_input.probes import assert_one_line_error, refusal, run_cli
 @pytest.mark.parametrize("text, expected", [
     ("- arm\n- gripper\n", "must be a mapping of HardwareStationConfig fields"),
     ("watchdog: {tactile_timeout: .nan}\n", "field 'watchdog.tactile_timeout' must be a finite"),
-    ("ready_timeout: -5\n", "field 'ready_timeout' must be positive"),
+    ("ready_timeout: -5\n", "field 'ready_timeout' must lie in [1.13333, 600] s"),
     ("tactile: {max_backlog: -3}\n", "field 'tactile.max_backlog' must be zero or a positive"),
-    ("watchdog: {arm_timeout: 0}\n", "field 'watchdog.arm_timeout' must be positive"),
+    ("watchdog: {arm_timeout: 0}\n", "field 'watchdog.arm_timeout' must lie in (0.02, 10] s"),
     ("arm: {lcm_url: 'udpm://239.255.76.67:99999?ttl=0'}\n",
      "field 'arm.lcm_url' has the port '99999', which is not a number from 1 to 65535"),
     ("arm: {lcm_url: garbage}\n", "field 'arm.lcm_url' does not parse as an LCM URL: it "
@@ -60,7 +60,7 @@ def test_a_hardware_duration_that_is_no_number_is_a_usage_error(duration, tmp_pa
 
 def test_a_trial_refuses_a_scenario_for_the_devices(tmp_path, capfd):
     scenario = tmp_path / "scenarios.yaml"
-    scenario.write_text("mine:\n  station: !HardwareStationConfig {ready_timeout: 1.0}\n")
+    scenario.write_text("mine:\n  station: !HardwareStationConfig {ready_timeout: 1.5}\n")
     code, text = run_cli(["trial", "--scenario", str(scenario), "--scenario-name", "mine",
                           "--out", str(tmp_path / "run")], capfd)
     assert_one_line_error(code, text, "!HardwareStationConfig", "tegrasp hardware")
@@ -170,7 +170,7 @@ def test_two_devices_on_one_serial_port_are_refused(through_symlink, tmp_path, c
             tactile = str(tmp_path / "ttyMYRIO")
             os.symlink(port, tactile)
         config = tmp_path / "hw.yaml"
-        config.write_text(f"ready_timeout: 1.0\nscheduling: normal\ngripper: {{port: {port}}}\n"
+        config.write_text(f"ready_timeout: 1.5\nscheduling: normal\ngripper: {{port: {port}}}\n"
                           f"tactile: {{port: {tactile}}}\n")
         code, output = run_cli(["hardware", "--config", str(config), "--set",
                                 "random_seed=620"], capfd)
@@ -309,7 +309,74 @@ def test_a_config_with_such_a_timeout_is_one_line(tmp_path, capfd):
                       "gripper: {port: /dev/null}\ntactile: {port: /dev/zero}\n"
                       "watchdog: {arm_timeout: 1.0e-9}\n")
     code, text = run_cli(["hardware", "--config", str(config)], capfd)
-    assert_one_line_error(code, text, "field 'watchdog.arm_timeout'", "give more than 0.02 s")
+    assert_one_line_error(code, text, "field 'watchdog.arm_timeout' must lie in (0.02, 10] s")
+
+
+# Rule: every number of a hardware config has a declared range whose ends its device's timing
+# gives (a staleness timeout below the myRIO's frame period, a ready timeout below the
+# 2F-85's activation, a watchdog timeout below two of a device's updates cannot work), with
+# the reason said, checked at load and where MakeHardwareStation is handed a config.
+def test_every_hardware_config_number_declares_a_range_with_its_reason():
+    import dataclasses
+    import typing
+
+    from tegrasp_drake.rig.ranges import range_of
+    missing = []
+
+    def walk(cls, prefix=""):
+        hints = typing.get_type_hints(cls)
+        for field in dataclasses.fields(cls):
+            hint = hints[field.name]
+            if dataclasses.is_dataclass(hint):
+                walk(hint, f"{prefix}{field.name}.")
+            elif hint in (int, float) or typing.get_args(hint) in ((int,), (float,)):
+                declared = range_of(field)
+                if (declared is None or declared.low is None or declared.high is None
+                        or not (declared.why or declared.below)):
+                    missing.append(prefix + field.name)
+    walk(HardwareStationConfig)
+    assert missing == []
+
+
+@pytest.mark.parametrize("body, words", [
+    ("tactile: {stale_timeout: 1.0e-9}\n",
+     "field 'tactile.stale_timeout' must lie in [0.002, 10] s (at least 2 of the myRIO's"),
+    ("ready_timeout: 1.0e-300\n",
+     "field 'ready_timeout' must lie in [1.13333, 600] s (at least the 2F-85's fastest "
+     "activation"),
+    ("gripper: {activation_timeout: 0.1}\n", "field 'gripper.activation_timeout' must lie in "
+                                             "[1.13333, 60] s"),
+    ("gripper: {request_timeout: 1.0e-9}\n", "field 'gripper.request_timeout' must lie in "
+                                             "(0.00260417, 10] s"),
+    ("gripper: {command_refresh_period: 1.0e-9}\n",
+     "field 'gripper.command_refresh_period' must lie in [0.005, 10] s"),
+    ("watchdog: {tactile_timeout: 0.001}\n", "field 'watchdog.tactile_timeout' must lie in "
+                                             "(0.002, 10] s"),
+    ("tactile: {baudrate: 9600}\n", "field 'tactile.baudrate' must lie in [232174, 12000000]"),
+    ("tactile: {max_backlog: 100000}\n", "field 'tactile.max_backlog' must lie in [0, 500]"),
+])
+def test_a_device_timing_no_device_can_meet_is_refused_at_load(tmp_path, body, words):
+    config = tmp_path / "hw.yaml"
+    config.write_text(body)
+    with pytest.raises(ConfigError) as raised:
+        LoadHardwareConfig(config)
+    assert words in str(raised.value) and "\n" not in str(raised.value), str(raised.value)
+
+
+@pytest.mark.parametrize("section, field, value, words", [
+    ("tactile", "stale_timeout", 1e-9, "field 'tactile.stale_timeout' must lie in [0.002"),
+    (None, "ready_timeout", 1e-300, "field 'ready_timeout' must lie in [1.13333"),
+    ("gripper", "baudrate", 9600, "field 'watchdog.gripper_timeout' is 0.1 s, not longer"),
+])
+def test_a_device_timing_set_after_loading_is_refused_by_the_builder(section, field, value,
+                                                                     words):
+    from tegrasp_drake import MakeHardwareStation
+    config = HardwareStationConfig()
+    setattr(getattr(config, section) if section else config, field, value)
+    with pytest.raises(ConfigError) as raised:
+        MakeHardwareStation(config)
+    assert str(raised.value).startswith("MakeHardwareStation: config: " + words), \
+        str(raised.value)
 
 
 # Rule: a serial port field naming something that is not a terminal device (a folder, a
@@ -383,8 +450,8 @@ def test_a_nul_in_a_config_set_port_is_bad_input(tmp_path, capfd):
 
 
 @pytest.mark.parametrize("assignment, words", [
-    ("ready_timeout=-5", "field 'ready_timeout' must be positive"),
-    ("watchdog.arm_timeout=0", "field 'watchdog.arm_timeout' must be positive"),
+    ("ready_timeout=-5", "field 'ready_timeout' must lie in [1.13333, 600] s"),
+    ("watchdog.arm_timeout=0", "field 'watchdog.arm_timeout' must lie in (0.02, 10] s"),
     ("tactile.max_backlog=many", "field 'tactile.max_backlog'"),
 ])
 def test_a_config_set_value_wrong_for_its_field_is_named_as_the_option(tmp_path, capfd,

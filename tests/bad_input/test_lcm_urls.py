@@ -125,7 +125,7 @@ def test_an_lcm_url_that_does_not_parse_is_a_usage_error_as_an_option(
     if option == "--lcm-url":
         code, text = run_cli(["emulate", "jaco", "--lcm-url", url], capfd)
         assert code == 2, text
-        assert_one_line_error(code, text, f"tegrasp emulate: error: argument --lcm-url: "
+        assert_one_line_error(code, text, f"tegrasp: error: argument --lcm-url: "
                               f"{url!r}: {words} (see tegrasp emulate --help)")
     else:
         code, text = run_cli(["hardware", "--config", "hw.yaml", "--config-set",

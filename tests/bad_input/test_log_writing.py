@@ -33,7 +33,7 @@ def test_a_hardware_run_whose_devices_do_not_come_up_keeps_the_earlier_log(tmp_p
     (tmp_path / "old.result.json").write_text(EARLIER_RESULT.replace("run.lcmlog", "old.lcmlog"))
     code = cli.main(["hardware", "--config", "hw.yaml", "--config-set",
                      "tactile.port=/dev/no_such_port", "--config-set",
-                     "gripper.port=/dev/no_such_gripper_port", "--config-set", "ready_timeout=1",
+                     "gripper.port=/dev/no_such_gripper_port", "--config-set", "ready_timeout=1.5",
                      "--config-set", "scheduling=normal", "--log", "old.lcmlog",
                      "--overwrite", "--controller", "heuristic"])
     captured = capfd.readouterr()

@@ -134,7 +134,7 @@ def test_a_killed_hardware_runs_staging_log_is_removed_by_the_next_run(tmp_path,
     live.write_bytes(b"being written")
     done = subprocess.run([*command, "--log", str(logs / "run.lcmlog"),
                            "--config-set", "tactile.port=/dev/no_such_port",
-                           "--config-set", "ready_timeout=1"],
+                           "--config-set", "ready_timeout=1.5"],
                           env=killed_runs.environment(), capture_output=True, text=True,
                           timeout=300)
     assert done.returncode == 1, done.stderr  # the devices did not come up: quickly done

@@ -42,7 +42,7 @@ def test_every_public_function_checks_every_argument(name):
 
 @pytest.mark.parametrize("call, words", [
     (lambda: tegrasp_drake.LoadScenario(name=None),
-     "LoadScenario: argument 'name' must be str, got NoneType None"),
+     "LoadScenario: argument 'name' must be str, got None"),
     (lambda: tegrasp_drake.LoadScenario(overrides="object.mass=1"),
      "argument 'overrides' must be a sequence of str (not a single string)"),
     (lambda: tegrasp_drake.LoadScenario(overrides=[b"object.mass=0.1"]),
@@ -71,6 +71,84 @@ def test_a_wrong_argument_is_named_at_the_call(call, words):
     with pytest.raises(TypeError) as error:
         call()
     assert words in str(error.value)
+
+
+
+def _probed_arguments(kind):
+    """(function name, argument) of every public function whose argument takes no `kind`:
+    "none" (None), "text" (a list, a sequence or a collection: a single string), "config"
+    (a config class of the package: another config class)."""
+    import collections.abc
+    import types
+
+    def members(hint):
+        hint = getattr(hint, "__origin__", hint) if typing.get_origin(hint) is typing.Annotated \
+            else hint
+        if typing.get_origin(hint) in (typing.Union, types.UnionType):
+            return [m for member in typing.get_args(hint) for m in members(member)]
+        return [hint]
+    collections_ = (list, tuple, collections.abc.Sequence, collections.abc.Collection,
+                    collections.abc.Iterable)
+    rows = []
+    for name in PUBLIC_FUNCTIONS:
+        function = getattr(tegrasp_drake, name)
+        hints = typing.get_type_hints(function, include_extras=True)
+        for argument, parameter in inspect.signature(function).parameters.items():
+            if parameter.kind in (parameter.VAR_POSITIONAL, parameter.VAR_KEYWORD):
+                continue
+            hint_members = members(hints[argument])
+            if any(m in (type(None), None, typing.Any, object) for m in hint_members):
+                if kind == "none":
+                    continue
+            if kind == "none":
+                rows.append((name, argument))
+            elif kind == "text" and any(typing.get_origin(m) in collections_
+                                        for m in hint_members) and str not in hint_members:
+                rows.append((name, argument))
+            elif kind == "config" and any(isinstance(m, type) and dataclasses.is_dataclass(m)
+                                          and m is not SweepSpec for m in hint_members):
+                rows.append((name, argument))
+    return rows
+
+
+# Rule: a public function given None, a single string for a list or a config of another
+# class says, in one line, the function, the argument, what it must be and what was given in
+# the user's words: "got None" (not "NoneType None"), "got str 'box'", "got a SweepSpec"
+# (not the config's repr, which runs for lines).
+@pytest.mark.parametrize("name, argument", _probed_arguments("none"))
+def test_every_public_function_given_none_says_got_none(name, argument):
+    with pytest.raises(TypeError) as raised:
+        getattr(tegrasp_drake, name).bind_now(**{argument: None})
+    message = str(raised.value)
+    assert message.startswith(f"{name}: argument '{argument}' must be "), message
+    assert message.endswith(", got None") and "\n" not in message, message
+
+
+@pytest.mark.parametrize("name, argument", _probed_arguments("text"))
+def test_every_public_function_given_one_string_for_a_list_names_it(name, argument):
+    with pytest.raises(TypeError) as raised:
+        getattr(tegrasp_drake, name).bind_now(**{argument: "box"})
+    message = str(raised.value)
+    assert message.startswith(f"{name}: argument '{argument}' must be "), message
+    assert "(not a single string)" in message and message.endswith(", got str 'box'"), message
+
+
+@pytest.mark.parametrize("name, argument", _probed_arguments("config"))
+def test_every_public_function_given_another_config_names_its_class(name, argument):
+    with pytest.raises(TypeError) as raised:
+        getattr(tegrasp_drake, name).bind_now(**{argument: SweepSpec()})
+    message = str(raised.value)
+    assert message.startswith(f"{name}: argument '{argument}' must be "), message
+    assert message.endswith(", got a SweepSpec") and "\n" not in message, message
+
+
+def test_a_public_dataclass_given_none_for_a_field_says_got_none():
+    with pytest.raises(TypeError, match=r"^Scenario: field 'random_seed' must be int, got None$"):
+        T.Scenario(random_seed=None)
+    with pytest.raises(TypeError, match=r"^Scenario: field 'object' must be an ObjectConfig "
+                       r"\(e\.g\. ObjectConfig\(\.\.\.\)\), not its fields as a mapping or a "
+                       r"name, got a SweepSpec$"):
+        T.Scenario(object=SweepSpec())
 
 PUBLIC_DATACLASSES = [name for name in tegrasp_drake.__all__
                       if dataclasses.is_dataclass(getattr(tegrasp_drake, name))]

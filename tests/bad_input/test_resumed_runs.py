@@ -81,7 +81,7 @@ def _contents(out):
 def _refused_as_another_study(code, message, *words):
     """The sweep's resume refusal: exit 2, one line naming what differs and the remedy."""
     assert code == 2, message
-    assert message.startswith("tegrasp sensitivity: error: ") and message.count("\n") == 0, \
+    assert message.startswith("tegrasp: error: ") and message.count("\n") == 0, \
         message
     assert "another sensitivity study" in message and "give another --out" in message, message
     for word in words:

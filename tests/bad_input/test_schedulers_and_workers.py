@@ -163,6 +163,49 @@ def test_a_scheduler_address_that_is_not_a_dask_scheduler_is_one_error(listener,
         runner.connect_scheduler(listener(kind))
 
 
+# Rule: a scheduler that cannot be reached is said in one line as soon as that is known: a
+# host name that does not resolve (".invalid" never does, RFC 6761) and a port where nothing
+# listens are refused before distributed is asked (it retries both until its 30 s timeout).
+@pytest.mark.parametrize("address, words", [
+    ("tcp://no-such-host.invalid:8786", "the host name no-such-host.invalid does not resolve"),
+    ("no-such-host.invalid:8786", "the host name no-such-host.invalid does not resolve"),
+    ("127.0.0.1:{port}", "nothing listens on port {port} (connection refused)"),
+    ("tcp://127.0.0.1:{port}", "nothing listens on port {port} (connection refused)"),
+])
+def test_a_scheduler_that_cannot_be_reached_is_said_before_dask_retries(address, words,
+                                                                       monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    import socket
+    from tegrasp_drake.sweep import runner
+    with socket.socket() as closed:  # a port free a moment ago: nothing listens there
+        closed.bind(("127.0.0.1", 0))
+        port = closed.getsockname()[1]
+    address, words = address.format(port=port), words.format(port=port)
+
+    def asked(*args, **kwargs):
+        raise AssertionError("distributed was asked to connect")
+    monkeypatch.setattr(distributed, "Client", asked)
+    with pytest.raises(runner.SweepError) as raised:
+        runner.connect_scheduler(address)
+    message = str(raised.value)  # the resolver's reason, in its words, may follow the host's
+    assert message.startswith(f"cannot reach the Dask scheduler at {address}: {words}"), message
+    assert message.endswith("; start `dask scheduler` there, or give the address it prints")
+    assert "\n" not in message
+
+
+def test_a_scheduler_address_without_its_protocol_is_tcp(monkeypatch):
+    distributed = pytest.importorskip("distributed")
+    from tegrasp_drake.sweep import runner
+    with distributed.LocalCluster(n_workers=0, processes=False, protocol="tcp://",
+                                  dashboard_address=":0") as cluster:
+        bare = cluster.scheduler_address.removeprefix("tcp://")
+        client = runner.connect_scheduler(bare)
+        try:
+            assert client.scheduler.address == cluster.scheduler_address
+        finally:
+            client.close()
+
+
 def test_an_inproc_scheduler_address_is_refused_by_its_form(tmp_path, capfd):
     spec = tmp_path / "s.yaml"
     spec.write_text("controllers: [memorized]\nattempts: 1\nobjects: [box]\n"
@@ -172,12 +215,13 @@ def test_an_inproc_scheduler_address_is_refused_by_its_form(tmp_path, capfd):
     assert code == 1 and "--scheduler 'inproc://x' is not a scheduler address" in text, text
 
 
-# Rule: a --scheduler address that does not parse as tcp://HOST:PORT (no PROTOCOL://, no
-# host, no port, a port that is no number, an unclosed '[') is a command line that does not
-# parse: exit 2, pointing to --help, in its own words, never urllib's ("Port could not be
-# cast to integer value"); one that parses and names what no scheduler is reached at (another
-# protocol, port 0, a port past 65535, a path) stays bad input, exit 1.
-FORM = "give tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786"
+# Rule: a --scheduler address that does not parse as tcp://HOST:PORT or HOST:PORT (no host,
+# no port, a port that is no number, an unclosed '[', a HOST that is no host name nor IP
+# address) is a command line that does not parse: exit 2, pointing to --help, in its own
+# words, never urllib's ("Port could not be cast to integer value"); one that parses and names
+# what no scheduler is reached at (another protocol, port 0, a port past 65535, a path) stays
+# bad input, exit 1.
+FORM = "give tcp://HOST:PORT or HOST:PORT, e.g. tcp://127.0.0.1:8786"
 
 
 @pytest.mark.parametrize("command", ["sweep", "transfer", "sensitivity"])
@@ -188,14 +232,19 @@ FORM = "give tcp://HOST:PORT, e.g. tcp://127.0.0.1:8786"
     ("tcp://x", f"it has no port; {FORM}"),
     ("tcp://:8786", f"it has no HOST; {FORM}"),
     ("tcp://[::1", f"its HOST has a '[' without its ']'; {FORM}"),
-    ("localhost:8786", f"it has no PROTOCOL:// (a Dask scheduler's address is a URL); {FORM}"),
+    ("localhost", f"it has no port; {FORM}"),
+    ("exa mple:8786", f"HOST 'exa mple' is not a host name (letters, digits, '-' and '.') "
+                      f"nor an IP address; {FORM}"),
+    ("tcp://-x-:8786", f"HOST '-x-' is not a host name (letters, digits, '-' and '.') nor an "
+                       f"IP address; {FORM}"),
+    ("tcp://[x]:8786", f"its [HOST] is not an IPv6 address; {FORM}"),
 ])
 def test_a_scheduler_address_that_does_not_parse_is_a_usage_error(command, address, words,
                                                                   tmp_path, capfd):
     code, text = run_cli([command, "--scheduler", address, "--out", str(tmp_path / "o")],
                          capfd)
     assert code == 2, text
-    assert_one_line_error(code, text, f"tegrasp {command}: error: argument --scheduler: "
+    assert_one_line_error(code, text, f"tegrasp: error: argument --scheduler: "
                           f"{address!r}: {words} (see tegrasp {command} --help)")
     assert "could not be cast" not in text and "Invalid IPv6" not in text, text
     assert not (tmp_path / "o").exists()
@@ -203,6 +252,7 @@ def test_a_scheduler_address_that_does_not_parse_is_a_usage_error(command, addre
 
 @pytest.mark.parametrize("address, words", [
     ("tcp://x:99999", "names port 99999, past the last TCP port (65535)"),
+    ("x:99999", "names port 99999, past the last TCP port (65535)"),
     ("tcp://x:0", "names port 0, which no scheduler listens on"),
     ("http://x:y", "is not a scheduler address PROTOCOL://HOST:PORT (PROTOCOL tcp)"),
     ("tcp://x:1/p", "has a path beside PROTOCOL://HOST:PORT"),
@@ -212,7 +262,7 @@ def test_a_scheduler_address_that_parses_and_is_refused_stays_bad_input(address,
     code, text = run_cli(["sweep", "--scheduler", address, "--out", str(tmp_path / "o"),
                           *FAKE_TRIALS], capfd)
     assert code == 1, text
-    assert_one_line_error(code, text, f"tegrasp sweep: error: --scheduler {address!r} {words}")
+    assert_one_line_error(code, text, f"tegrasp: error: --scheduler {address!r} {words}")
     assert "Port out of range" not in text and "--help" not in text, text
 
 

@@ -183,8 +183,8 @@ def test_a_move_in_no_time_is_refused_by_the_api_and_the_command_line(tmp_path, 
 
 # Every range that stops at an open 0, decided by its physics: a tiny positive value of these
 # is harmless. Times [s]: a simulated one shorter than the plant step is refused
-# (check_times_resolved), a device timeout that short fails at once naming the device. Speeds,
-# forces and fractions: a tiny one makes a slow or failed grasp the trial reports (tried at
+# (check_times_resolved); the devices' timeouts have their devices' periods as their lows
+# (hardware/config.py). Speeds, forces and fractions: a tiny one makes a slow or failed grasp the trial reports (tried at
 # 1e-9: grip_force, gripper acceleration). Filter corners (slip band, load low-pass): a tiny
 # one makes a vanishing signal (a test turns the load channel off with a 1e-3 Hz corner).
 # Contact: Drake's point contact and regularized friction ran at 1e-9 m and 1e-12 m/s. The
@@ -198,7 +198,6 @@ def test_a_move_in_no_time_is_refused_by_the_api_and_the_command_line(tmp_path, 
 TINY_IS_HARMLESS = {
     "AvoidConfig": {"move_s"},
     "ArmDriverConfig": {"command_latency_s", "control_period_s"},
-    "DeviceWatchdogConfig": {"arm_timeout", "gripper_timeout", "tactile_timeout"},
     "DisturbanceConfig": {"hit_duration_s"},
     "DriveVibrationConfig": {"full_speed"},
     "FilmConfig": {"load_lowpass_hz"},
@@ -207,7 +206,6 @@ TINY_IS_HARMLESS = {
     "GraspScriptConfig": {"lift_s", "load_s", "place_s", "reach_s", "retract_s",
                           "unload_s"},
     "GripperDriverConfig": {"acceleration", "stall_speed"},
-    "HardwareStationConfig": {"ready_timeout"},
     "HeuristicControllerConfig": {"load_event_timeout_s", "update_period_s"},
     "HeuristicTriggerConfig": {"grip_fraction"},
     "JacoVelocityTrackerConfig": {"max_joint_speed"},
@@ -216,8 +214,6 @@ TINY_IS_HARMLESS = {
     "MultibodyPlantConfig": {"penetration_allowance", "stiction_tolerance"},
     "PlaceConfig": {"event_timeout_s"},
     "ReReachConfig": {"move_s", "reach_event_timeout_s"},
-    "RobotiqModbusConfig": {"activation_timeout", "command_refresh_period", "request_timeout"},
-    "SerialTactileDriver": {"stale_timeout"},
     "SimulatorConfig": {"accuracy", "max_step_size"},
     "TaxelAwareControllerConfig": {"load_event_timeout_s", "update_period_s"},
 }

@@ -66,7 +66,7 @@ def test_a_missing_log_or_results_is_a_usage_error(what, needed, capsys):
         main(["plot", what])
     assert exit_info.value.code == 2
     err = capsys.readouterr().err
-    assert err.startswith(f"tegrasp plot: error: `tegrasp plot {what}` needs LOG|RESULTS, {needed}")
+    assert err.startswith(f"tegrasp: error: `tegrasp plot {what}` needs LOG|RESULTS, {needed}")
     assert err.endswith("(see tegrasp plot --help)\n") and err.count("\n") == 1
 
 

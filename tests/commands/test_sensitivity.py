@@ -90,6 +90,6 @@ def test_a_bad_spec_is_refused_in_one_line_before_anything_runs(tmp_path):
     done = subprocess.run(command(spec, out), env=environment(), capture_output=True,
                           text=True, timeout=TIMEOUT_S)
     assert done.returncode == 2
-    assert done.stderr.startswith(f"tegrasp sensitivity: error: {spec}: field 'parameters[0]'")
+    assert done.stderr.startswith(f"tegrasp: error: {spec}: field 'parameters[0]'")
     assert done.stderr.count("\n") == 1
     assert not (out / "cells").exists()

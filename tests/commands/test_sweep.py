@@ -468,14 +468,14 @@ def test_the_scheduler_connection_says_what_it_connects_to_before_it_tries(
         raise runner.SweepError(f"cannot reach the Dask scheduler at {address}")
     monkeypatch.setattr(runner, "connect_scheduler", refuse)
     args = argparse.Namespace(scheduler="tcp://127.0.0.1:1", verbose=0, quiet=quiet)
-    with command.refusals_said("transfer") as refused:
+    with command.refusals_said() as refused:
         with command.scheduler_connection(args, "transfer"):
             pass
     assert refused.exit_code == 1
     expected = ("" if quiet else "tegrasp transfer: connecting to the Dask scheduler at "
                 f"tcp://127.0.0.1:1 (at most {runner.DASK_ANSWER_BOUND_S:.0f} s) ...\n")
     assert said == [expected]
-    assert capsys.readouterr().err == ("tegrasp transfer: error: cannot reach the Dask "
+    assert capsys.readouterr().err == ("tegrasp: error: cannot reach the Dask "
                                        "scheduler at tcp://127.0.0.1:1\n")
 
 
@@ -485,15 +485,15 @@ def test_the_scheduler_connection_says_what_it_connects_to_before_it_tries(
     (command.ConfigError("field 'attempts'"), 2),
     (command.SweepError("another sweep's records"), 2)])
 def test_a_sweep_commands_refusal_is_one_line_and_its_exit_code(error, code, capsys):
-    with command.refusals_said("transfer") as refused:
+    with command.refusals_said() as refused:
         raise error
     assert refused.exit_code == code
-    assert capsys.readouterr().err == f"tegrasp transfer: error: {error}\n"
+    assert capsys.readouterr().err == f"tegrasp: error: {error}\n"
 
 
 def test_unreadable_memorized_events_end_a_sweep_command_as_bad_input():
     from tegrasp_drake.events import MemorizedEventError
     with pytest.raises(SystemExit, match="^tegrasp: error: ") as ended:
-        with command.refusals_said("sensitivity"):
+        with command.refusals_said():
             raise MemorizedEventError("events/index.json", "not JSON")
     assert "events/index.json" in str(ended.value)

@@ -23,6 +23,14 @@ from tegrasp_drake.robotiq import registers
 from tegrasp_drake.rig.api_boundary import public_dataclass
 
 MIN_PERIOD = 1.0 / 200.0  # [s]
+# [s] the least the 2F-85's activation can take: it strokes the fingers through the whole
+# stroke and back (the manual's activation), at most SPEED_MAX_MPS over STROKE_M each way. A
+# wait for the gripper to be active shorter than this always fails.
+ACTIVATION_MIN_S = 2.0 * units.STROKE_M / units.SPEED_MAX_MPS
+# [s] a command write and its answer on the wire at the 2F-85's 115200 baud (Modbus RTU,
+# registers.transaction_seconds): a request timeout shorter than this times every request out
+# (a slower gripper.baudrate needs more: hardware/config.gripper_request_timeout_problem).
+FASTEST_WRITE_S = registers.transaction_seconds(registers.WRITE_BYTES, registers.BAUDRATE)
 
 
 @public_dataclass
@@ -36,12 +44,25 @@ class RobotiqModbusConfig:
                              why="Modbus slave addresses, Modbus over serial line specification")
     period: float = bounded(MIN_PERIOD, low=MIN_PERIOD, high=1.0, unit="s",
                             why="the 2F-85 takes requests at up to 200 Hz")
-    # a status answer is 11 bytes, about 1 ms at 115200 baud; 50 ms is ample
-    request_timeout: float = bounded(0.05, low=0.0, low_open=True, high=10.0, unit="s")
-    # activation strokes the fingers (the emulator takes 1.5 s); 5 s leaves margin
-    activation_timeout: float = bounded(5.0, low=0.0, low_open=True, high=60.0, unit="s")
-    # a lost write is repeated within 0.1 s
-    command_refresh_period: float = bounded(0.1, low=0.0, low_open=True, high=10.0, unit="s")
+    # a status answer is 11 bytes, about 1 ms at 115200 baud; 50 ms is ample. Low end: a
+    # write and its answer at 115200 baud (FASTEST_WRITE_S); high: 10 s of silence is a
+    # gripper gone, not a slow one.
+    request_timeout: float = bounded(
+        0.05, low=FASTEST_WRITE_S, low_open=True, high=10.0, unit="s",
+        why=f"longer than a write and its answer at 115200 baud, "
+            f"{number_text(FASTEST_WRITE_S)} s")
+    # activation strokes the fingers (the emulator takes 1.5 s); 5 s leaves margin. Low
+    # end: the fastest activation (ACTIVATION_MIN_S); high: a minute is a gripper stuck.
+    activation_timeout: float = bounded(
+        5.0, low=ACTIVATION_MIN_S, high=60.0, unit="s",
+        why=f"at least the 2F-85's fastest activation, its {units.STROKE_M * 1e3:g} mm "
+            f"stroke and back at {units.SPEED_MAX_MPS * 1e3:g} mm/s, "
+            f"{number_text(ACTIVATION_MIN_S)} s")
+    # a lost write is repeated within 0.1 s. Low end: one request period at the 2F-85's
+    # 200 Hz (a write cannot be repeated more often than requests go out).
+    command_refresh_period: float = bounded(
+        0.1, low=MIN_PERIOD, high=10.0, unit="s",
+        why="at least one request period at the 2F-85's 200 Hz")
     # 4, or 3 on some firmware
     read_function: int = bounded(registers.READ_FUNCTION, low=3, high=4,
                                  why="Modbus function 3 or 4")
