@@ -10,6 +10,11 @@ from tegrasp_drake import cli
 from tegrasp_drake.commands import sweep as command
 from tegrasp_drake.sweep.records import load_records
 
+
+def sweep_main(argv) -> int:
+    """`tegrasp sweep ARGV` run in this process through the command line's entry."""
+    return cli.main(["sweep", *argv])
+
 FAKE = ["--trial-function", "tests.fake_trials:fake_trial", "--no-progress"]
 
 
@@ -24,7 +29,7 @@ def test_register_adds_the_sweep_subcommand():
 
 def test_sweep_writes_records_and_reports(tmp_path, capsys):
     out = tmp_path / "out"
-    code = command.main(["--objects", "box", "--controllers", "memorized", "heuristic",
+    code = sweep_main(["--objects", "box", "--controllers", "memorized", "heuristic",
                          "--attempts", "1", "--workers", "2", "--base-seed", "3",
                          "--out", str(out), *FAKE])
     assert code == 0
@@ -44,7 +49,7 @@ def test_spec_file_with_command_line_overrides(tmp_path):
     spec.write_text("objects: [thin_cylinder]\ncontrollers: [open_loop]\nattempts: 3\n"
                     "grid: [[0.0, 0.0], [0.0, 0.02]]\n")
     out = tmp_path / "out"
-    assert command.main(["--spec", str(spec), "--attempts", "2", "--out", str(out),
+    assert sweep_main(["--spec", str(spec), "--attempts", "2", "--out", str(out),
                          "--workers", "1", *FAKE]) == 0
     records = load_records(out).records
     assert sorted(records) == [f"open_loop/thin_cylinder/m0{j}/a{k}"
@@ -56,7 +61,7 @@ def test_set_options_follow_the_spec_files_overrides_into_every_record(tmp_path)
     spec.write_text("objects: [box]\ncontrollers: [memorized]\nattempts: 1\n"
                     "scenario_overrides: ['disturbance.hit_time_s=7.0']\n")
     out = tmp_path / "out"
-    assert command.main(["--spec", str(spec), "--set",
+    assert sweep_main(["--spec", str(spec), "--set",
                          "controller.memorized_corrective.events=[hold_avoid]",
                          "--out", str(out), "--workers", "1", *FAKE]) == 0
     records = load_records(out).records
@@ -66,12 +71,12 @@ def test_set_options_follow_the_spec_files_overrides_into_every_record(tmp_path)
             "disturbance.hit_time_s=7.0",
             "controller.memorized_corrective.events=[hold_avoid]"]
     # The same folder with other settings is refused, not mixed.
-    assert command.main(["--spec", str(spec), "--out", str(out), "--workers", "1",
+    assert sweep_main(["--spec", str(spec), "--out", str(out), "--workers", "1",
                          *FAKE]) == 2
 
 
 def test_trial_errors_give_exit_code_1(tmp_path, capsys):
-    code = command.main(["--objects", "box", "--controllers", "memorized", "--attempts", "2",
+    code = sweep_main(["--objects", "box", "--controllers", "memorized", "--attempts", "2",
                          "--out", str(tmp_path), "--workers", "2", "--no-progress",
                          "--trial-function", "tests.fake_trials:failing_fake_trial"])
     assert code == 1
@@ -94,7 +99,7 @@ def test_bad_options_stop_before_any_trial(tmp_path, capsys, arguments, message,
     """Exit 2 for a spec refused (the options that set its fields), 1 for a runner's option
     or a number outside its range (bad input, as for any command)."""
     out = tmp_path / "out"
-    assert command.main([*arguments, "--out", str(out), *FAKE]) == code
+    assert sweep_main([*arguments, "--out", str(out), *FAKE]) == code
     assert message in capsys.readouterr().err
     assert not out.exists()
 
@@ -110,7 +115,7 @@ def test_a_refused_override_is_named_where_it_was_written(tmp_path, capsys, give
     entries = "[grasp.grip_force=5000]" if given == "grasp.hold_s=2" else "[grasp.hold_s=2]"
     spec.write_text(f"objects: [box]\nscenario_overrides: {entries}\n")
     out = tmp_path / "out"
-    assert command.main(["--spec", str(spec), "--set", given, "--out", str(out), *FAKE]) == 2
+    assert sweep_main(["--spec", str(spec), "--set", given, "--out", str(out), *FAKE]) == 2
     err = capsys.readouterr().err
     assert refused in err, err
     where = f"{spec}: " if given == "grasp.hold_s=2" else "error: --set"
@@ -130,7 +135,7 @@ def test_a_scheduler_address_tegrasp_cannot_connect_to_is_refused_by_its_form(
     """Only tcp:// (tls:// would need certificates, which no option gives) and a port a
     scheduler can listen on: refused in one line before any connection, exit 1."""
     out = tmp_path / "out"
-    assert command.main(["--objects", "box", "--scheduler", address, "--out", str(out),
+    assert sweep_main(["--objects", "box", "--scheduler", address, "--out", str(out),
                          *FAKE]) == 1
     err = capsys.readouterr().err
     assert f"--scheduler {address!r} {message}" in err
@@ -142,7 +147,7 @@ def test_a_logs_folder_that_cannot_be_written_is_a_bad_option_as_out_is(tmp_path
     a refused spec."""
     (tmp_path / "afile").write_text("mine")
     out = tmp_path / "out"
-    assert command.main(["--objects", "box", "--controllers", "memorized", "--attempts", "1",
+    assert sweep_main(["--objects", "box", "--controllers", "memorized", "--attempts", "1",
                          "--logs", str(tmp_path / "afile" / "logs"), "--out", str(out),
                          *FAKE]) == 1
     err = capsys.readouterr().err
@@ -161,7 +166,7 @@ def test_a_logs_folder_that_cannot_be_written_is_a_bad_option_as_out_is(tmp_path
 def test_bad_spec_file_stops_before_any_trial(tmp_path, capsys, text, message):
     spec, out = tmp_path / "bad.yaml", tmp_path / "out"
     spec.write_text(text)
-    assert command.main(["--spec", str(spec), "--out", str(out), *FAKE]) == 2
+    assert sweep_main(["--spec", str(spec), "--out", str(out), *FAKE]) == 2
     err = capsys.readouterr().err
     assert str(spec) in err and message in err
     assert not out.exists()
@@ -185,7 +190,7 @@ def test_missing_memorized_events_stop_the_real_sweep_before_any_trial(
         spec = tmp_path / "cup.yaml"
         spec.write_text(spec_text)
         arguments = ["--spec", str(spec)]
-    assert command.main([*arguments, "--out", str(out), "--no-progress"]) == 1
+    assert sweep_main([*arguments, "--out", str(out), "--no-progress"]) == 1
     err = capsys.readouterr().err.strip()
     assert message in err and "\n" not in err and "Traceback" not in err
     assert not out.exists()
@@ -198,7 +203,7 @@ def test_dry_run_prints_the_plan_and_runs_nothing(tmp_path, capsys):
                     "user_objects:\n"
                     "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n")
     out = tmp_path / "out"
-    assert command.main(["--spec", str(spec), "--base-seed", "7", "--dry-run",
+    assert sweep_main(["--spec", str(spec), "--base-seed", "7", "--dry-run",
                          "--out", str(out), *FAKE]) == 0
     text = capsys.readouterr().out
     assert "32 trials (2 objects x 4 markers x 2 attempts x 2 controllers)" in text
@@ -240,7 +245,7 @@ def test_a_plan_counts_its_factors_in_the_singular_where_one(tmp_path, capsys, a
     spec = tmp_path / "one.yaml"
     spec.write_text(f"objects: [box]\ncontrollers: [open_loop]\nattempts: {attempts}\n"
                     "grid: [[0.0, 0.0]]\n")
-    assert command.main(["--spec", str(spec), "--dry-run", "--out", str(tmp_path / "out"),
+    assert sweep_main(["--spec", str(spec), "--dry-run", "--out", str(tmp_path / "out"),
                          *FAKE]) == code
     assert words in getattr(capsys.readouterr(), stream)
 
@@ -252,7 +257,7 @@ def test_dry_run_checks_the_events_as_the_real_sweep_does(tmp_path, capsys):
     spec.write_text("objects: [cup]\ncontrollers: [memorized]\nuser_objects:\n"
                     "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n")
     out = tmp_path / "out"
-    assert command.main(["--spec", str(spec), "--dry-run", "--events", str(tmp_path),
+    assert sweep_main(["--spec", str(spec), "--dry-run", "--events", str(tmp_path),
                          "--out", str(out), "--no-progress"]) == 1
     captured = capsys.readouterr()
     assert "trial memorized/cup/m00/a0" in captured.err and "sweep plan" not in captured.out
@@ -264,7 +269,7 @@ def test_dry_run_refuses_a_logs_path_that_is_not_a_folder_as_the_run_does(tmp_pa
     arguments = ["--objects", "box", "--controllers", "memorized", "--attempts", "1",
                  "--logs", str(tmp_path / "trial.npz"), "--out", str(tmp_path / "out"), *FAKE]
     for dry_run in ([], ["--dry-run"]):
-        assert command.main([*arguments, *dry_run]) == 1, dry_run
+        assert sweep_main([*arguments, *dry_run]) == 1, dry_run
         captured = capsys.readouterr()
         assert f"--logs {tmp_path / 'trial.npz'}" in captured.err, (dry_run, captured.err)
         assert "sweep plan" not in captured.out
@@ -274,11 +279,11 @@ def test_dry_run_refuses_an_out_folder_of_records_made_with_other_settings(tmp_p
     out = tmp_path / "out"
     common = ["--objects", "box", "--controllers", "memorized", "--attempts", "1",
               "--out", str(out), *FAKE]
-    assert command.main(common) == 0
+    assert sweep_main(common) == 0
     capsys.readouterr()
     records = {path: path.stat().st_mtime_ns for path in (out / "trials").iterdir()}
     for dry_run in (["--dry-run"], []):  # the plan, then the run, refused alike
-        assert command.main([*common, "--base-seed", "7", *dry_run]) == 2, dry_run
+        assert sweep_main([*common, "--base-seed", "7", *dry_run]) == 2, dry_run
         captured = capsys.readouterr()
         assert "made with other settings" in captured.err, captured.err
         assert "sweep plan" not in captured.out
@@ -291,7 +296,7 @@ def test_dry_run_names_a_damaged_record_and_prices_the_trials_left(tmp_path, cap
     out = tmp_path / "out"
     common = ["--objects", "box", "--controllers", "memorized", "--attempts", "1",
               "--out", str(out), *FAKE]
-    assert command.main(common) == 0  # 9 trials, all finished
+    assert sweep_main(common) == 0  # 9 trials, all finished
     capsys.readouterr()
     record = sorted((out / "trials").glob("*.json"))[0]
     if damage == "checksum":
@@ -299,7 +304,7 @@ def test_dry_run_names_a_damaged_record_and_prices_the_trials_left(tmp_path, cap
     else:
         record.unlink()
         os.mkfifo(record)
-    assert command.main([*common, "--dry-run"]) == 0
+    assert sweep_main([*common, "--dry-run"]) == 0
     text = capsys.readouterr().out
     assert "9 trials (1 object x 9 markers x 1 attempt x 1 controller), 8 already finished" \
         in text and "1 to run" in text, text
@@ -310,7 +315,7 @@ def test_dry_run_names_a_damaged_record_and_prices_the_trials_left(tmp_path, cap
 
 def test_a_missing_trial_function_is_reported(tmp_path, capsys):
     out = tmp_path / "out"
-    assert command.main(["--out", str(out), "--no-progress",
+    assert sweep_main(["--out", str(out), "--no-progress",
                          "--trial-function", "no_such_module_xyz:run"]) == 2
     assert "cannot load the trial function no_such_module_xyz:run" in capsys.readouterr().err
     assert not out.exists()
@@ -318,7 +323,7 @@ def test_a_missing_trial_function_is_reported(tmp_path, capsys):
 
 def test_benchmark_prints_wall_times_and_speed_up(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
-    code = command.main(["--benchmark", "--objects", "box", "--attempts", "1",
+    code = sweep_main(["--benchmark", "--objects", "box", "--attempts", "1",
                          "--no-progress", "--trial-function", "tests.fake_trials:slow_fake_trial"])
     assert code == 0
     lines = capsys.readouterr().out.splitlines()
@@ -335,7 +340,7 @@ def test_benchmark_prints_wall_times_and_speed_up(tmp_path, monkeypatch, capsys)
 def test_benchmark_refuses_the_runner_options_it_does_not_use(tmp_path, monkeypatch, capsys,
                                                                arguments, unused):
     monkeypatch.chdir(tmp_path)
-    assert command.main(["--benchmark", *arguments, *FAKE]) == 1
+    assert sweep_main(["--benchmark", *arguments, *FAKE]) == 1
     error = capsys.readouterr().err
     assert error.count("\n") == 1 and "--benchmark times the local process pool" in error
     assert unused in error
@@ -345,7 +350,7 @@ def test_benchmark_refuses_the_runner_options_it_does_not_use(tmp_path, monkeypa
 def test_benchmark_dry_run_prints_the_plan_of_the_sweep_it_times(tmp_path, monkeypatch,
                                                                  capsys):
     monkeypatch.chdir(tmp_path)
-    assert command.main(["--benchmark", "--dry-run", "--objects", "box", *FAKE]) == 0
+    assert sweep_main(["--benchmark", "--dry-run", "--objects", "box", *FAKE]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert lines[0].startswith("sweep plan (nothing run): 27 trials")
     assert lines[2] == "  controllers: memorized"
@@ -354,7 +359,7 @@ def test_benchmark_dry_run_prints_the_plan_of_the_sweep_it_times(tmp_path, monke
 
 
 def test_statistics_json_is_valid(tmp_path):
-    command.main(["--objects", "box", "--attempts", "1", "--workers", "2",
+    sweep_main(["--objects", "box", "--attempts", "1", "--workers", "2",
                   "--out", str(tmp_path), *FAKE])
     statistics = json.loads((tmp_path / "statistics.json").read_text())
     records = [json.loads(path.read_text()) for path in (tmp_path / "trials").glob("*.json")]
@@ -401,9 +406,9 @@ def test_a_smaller_spec_in_a_reused_folder_counts_only_its_own_trials(tmp_path, 
     out = tmp_path / "out"
     common = ["--objects", "box", "--controllers", "memorized", "--workers", "2",
               "--out", str(out), *FAKE]
-    assert command.main([*common, "--attempts", "2"]) == 0
+    assert sweep_main([*common, "--attempts", "2"]) == 0
     capsys.readouterr()
-    assert command.main([*common, "--attempts", "1"]) == 0
+    assert sweep_main([*common, "--attempts", "1"]) == 0
     stdout = capsys.readouterr().out
     assert "sweep: 9 trials, 9 already finished" in stdout
     assert "9 record(s) of trials not in this spec are in" in stdout
