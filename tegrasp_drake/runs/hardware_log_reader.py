@@ -5,6 +5,7 @@ matcher on it."""
 
 import bisect
 import dataclasses
+import os
 import pathlib
 import struct
 
@@ -17,8 +18,9 @@ from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import check_ranges, field_range
 from tegrasp_drake.rig.echo import shorten, shown
-from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError, JsonValueError,
-                                     file_problem, load_json, one_line, read_bounded)
+from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError,
+                                     InputTooLargeError, JsonValueError, file_problem,
+                                     load_json, one_line, read_bounded)
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DEVICES, KINDS, NO_CODE
@@ -161,6 +163,19 @@ MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged o
 # The largest run log read into memory: a 10-minute run (hardware --duration's limit) at the
 # bus's ~100 kB/s is about 60 MB; 1 GiB bounds what a file can make the reader hold.
 MAX_RUN_LOG_BYTES = 2**30
+
+
+def too_large_run_log_problem(path) -> str:
+    """Why the run log at `path`, larger than MAX_RUN_LOG_BYTES, is not read, and what to do:
+    replay a part of it (lcm-logfilter keeps the messages of a stretch of seconds from the
+    log's first one; from 0 the part keeps the run's TEGRASP_RUN_INFO) or a shorter run."""
+    try:
+        size = f"is {os.stat(path).st_size} bytes, "
+    except OSError:
+        size = ""
+    return (f"run log '{path}' {size}more than the {MAX_RUN_LOG_BYTES} bytes (1 GiB) a replay "
+            "reads (a 10-minute run logs about 60 MB); replay a part of it, e.g. its first "
+            f"10 minutes: lcm-logfilter -c '.*' -e 600 '{path}' part.lcmlog, or a shorter run")
 
 
 def _plausible_header(data: bytes, position: int) -> bool:
@@ -813,6 +828,8 @@ def read_run_log(path) -> RunLog:
     counts = {}
     try:
         data = read_bounded(path, MAX_RUN_LOG_BYTES)
+    except InputTooLargeError:  # from the file's size, before a byte is read
+        raise RunLogError(too_large_run_log_problem(path)) from None
     except OSError as e:
         raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
     events, damage = _scan_lcm_bytes(data)
