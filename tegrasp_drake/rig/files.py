@@ -612,9 +612,16 @@ def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
         if stat.S_ISREG(status.st_mode) and status.st_size > limit:
             raise InputTooLargeError(path, limit)
         os.set_blocking(descriptor, True)
+        # A regular file is read with a buffer of its size, not of `limit` (read(n) allocates
+        # n bytes first: 1 GiB for a run log of 1 MB); one that grew since fstat is read on to
+        # the bound.
+        wanted = limit + 1
+        first = min(wanted, status.st_size + 1) if stat.S_ISREG(status.st_mode) else wanted
         with os.fdopen(descriptor, "rb") as stream:
             descriptor = None
-            data = stream.read(limit + 1)
+            data = stream.read(first)
+            if len(data) == first < wanted:
+                data += stream.read(wanted - first)
     finally:
         if descriptor is not None:
             os.close(descriptor)

@@ -231,3 +231,21 @@ def test_replay_refuses_a_log_over_its_limit_from_its_size_saying_what_to_do(
     assert_one_line_error(code, text, "run log 'sparse.lcmlog' is 3221225472 bytes",
                           f"more than the {MAX_RUN_LOG_BYTES} bytes", "lcm-logfilter",
                           "a shorter run")
+
+
+def test_a_file_that_grows_after_its_size_is_taken_is_read_to_its_bound(tmp_path, monkeypatch):
+    """read_bounded reads a regular file with a buffer of the size fstat gave; one that grew
+    since is read on, and still refused past the limit."""
+    real_fstat = os.fstat
+
+    def fstat_of_a_smaller_file(descriptor):
+        status = list(real_fstat(descriptor))
+        status[6] = 10  # st_size: the file as it was before it grew
+        return os.stat_result(status)
+    monkeypatch.setattr(files.os, "fstat", fstat_of_a_smaller_file)
+    grown = tmp_path / "grown.bin"
+    grown.write_bytes(b"y" * 3000)
+    assert files.read_bounded(grown, 4096) == b"y" * 3000
+    grown.write_bytes(b"y" * 5000)
+    with pytest.raises(files.InputTooLargeError):
+        files.read_bounded(grown, 4096)
