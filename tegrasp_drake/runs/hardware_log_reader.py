@@ -161,8 +161,10 @@ MAX_CHANNEL_LENGTH = 256
 # message: the header is skipped as corrupt bytes, not read as a message cut off at the end.
 MAX_LCM_MESSAGE_BYTES = 1 << 28
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
-# The largest run log read into memory: a 10-minute run (hardware --duration's limit) at the
-# bus's ~100 kB/s is about 60 MB; 1 GiB bounds what a file can make the reader hold.
+# The largest run log read into memory: a 10-minute run (hardware --duration's limit) logs
+# about 230 MB (1 kHz of 330-byte TEGRASP_TACTILE events, 100 Hz each of 306-byte arm statuses
+# and 163-byte commands: 377 kB/s); 1 GiB bounds what a file can make the reader hold. Reading
+# holds about 1 kB a message (read_run_log), so 1 GiB of tactile events is about 3 GB.
 MAX_RUN_LOG_BYTES = 2**30
 
 
@@ -175,7 +177,7 @@ def too_large_run_log_problem(path) -> str:
     except OSError:
         size = ""
     return (f"run log '{path}' {size}more than the {MAX_RUN_LOG_BYTES} bytes (1 GiB) a replay "
-            "reads (a 10-minute run logs about 60 MB); replay a part of it, e.g. its first "
+            "reads (a 10-minute run logs about 230 MB); replay a part of it, e.g. its first "
             f"10 minutes: lcm-logfilter -c '.*' -e 600 '{path}' part.lcmlog, or a shorter run")
 
 
