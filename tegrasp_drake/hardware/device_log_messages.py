@@ -113,16 +113,23 @@ def tactile_arrays(messages) -> dict:
     """Arrays of lcmt_tegrasp_tactile messages: t, device_t [s]; taxels (n, 24) [N];
     pad_acceleration (n, 6); stale, zeroing; arrival_s, tick_s [s, host monotonic]."""
     messages = list(messages)
+    n = len(messages)
+    # Filled row by row into arrays made once: no list of rows beside them (a long log holds
+    # hundreds of thousands of messages).
+    taxels = np.empty((n, 2 * TAXELS_PER_PAD))
+    pad_acceleration = np.empty((n, 6))
+    for k, m in enumerate(messages):
+        taxels[k, :TAXELS_PER_PAD] = m.left_taxel_forces
+        taxels[k, TAXELS_PER_PAD:] = m.right_taxel_forces
+        pad_acceleration[k, :3] = m.left_pad_acceleration
+        pad_acceleration[k, 3:] = m.right_pad_acceleration
     return {
-        "t": np.array([m.utime * 1e-6 for m in messages]),
-        "device_t": np.array([m.device_utime * 1e-6 for m in messages]),
-        "taxels": np.array([list(m.left_taxel_forces) + list(m.right_taxel_forces)
-                            for m in messages]).reshape(len(messages), 2 * TAXELS_PER_PAD),
-        "pad_acceleration": np.array([
-            list(m.left_pad_acceleration) + list(m.right_pad_acceleration)
-            for m in messages]).reshape(len(messages), 6),
-        "stale": np.array([m.stale for m in messages], dtype=bool),
-        "arrival_s": np.array([m.arrival_s for m in messages]),
-        "tick_s": np.array([m.tick_s for m in messages]),
-        "zeroing": np.array([m.zeroing for m in messages], dtype=bool),
+        "t": np.fromiter((m.utime * 1e-6 for m in messages), float, n),
+        "device_t": np.fromiter((m.device_utime * 1e-6 for m in messages), float, n),
+        "taxels": taxels,
+        "pad_acceleration": pad_acceleration,
+        "stale": np.fromiter((m.stale for m in messages), bool, n),
+        "arrival_s": np.fromiter((m.arrival_s for m in messages), float, n),
+        "tick_s": np.fromiter((m.tick_s for m in messages), float, n),
+        "zeroing": np.fromiter((m.zeroing for m in messages), bool, n),
     }

@@ -3,8 +3,10 @@ RunLog. Channels, types and fields: tegrasp_drake/lcmtypes/README.md. A damaged 
 as far as it goes (RunLog.damage says what was lost); hardware_log_replay.py re-runs the
 matcher on it."""
 
+import array
 import bisect
 import dataclasses
+import os
 import pathlib
 import struct
 
@@ -17,8 +19,9 @@ from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import check_ranges, field_range
 from tegrasp_drake.rig.echo import shorten, shown
-from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError, JsonValueError,
-                                     file_problem, load_json, one_line, read_bounded)
+from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError,
+                                     InputTooLargeError, JsonValueError, file_problem,
+                                     load_json, one_line, read_bounded)
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DEVICES, KINDS, NO_CODE
@@ -158,9 +161,24 @@ MAX_CHANNEL_LENGTH = 256
 # message: the header is skipped as corrupt bytes, not read as a message cut off at the end.
 MAX_LCM_MESSAGE_BYTES = 1 << 28
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
-# The largest run log read into memory: a 10-minute run (hardware --duration's limit) at the
-# bus's ~100 kB/s is about 60 MB; 1 GiB bounds what a file can make the reader hold.
+# The largest run log read into memory: a 10-minute run (hardware --duration's limit) logs
+# about 230 MB (1 kHz of 330-byte TEGRASP_TACTILE events, 100 Hz each of 306-byte arm statuses
+# and 163-byte commands: 377 kB/s); 1 GiB bounds what a file can make the reader hold. Reading
+# holds about 1 kB a message (read_run_log), so 1 GiB of tactile events is about 3 GB.
 MAX_RUN_LOG_BYTES = 2**30
+
+
+def too_large_run_log_problem(path) -> str:
+    """Why the run log at `path`, larger than MAX_RUN_LOG_BYTES, is not read, and what to do:
+    replay a part of it (lcm-logfilter keeps the messages of a stretch of seconds from the
+    log's first one; from 0 the part keeps the run's TEGRASP_RUN_INFO) or a shorter run."""
+    try:
+        size = f"is {os.stat(path).st_size} bytes, "
+    except OSError:
+        size = ""
+    return (f"run log '{path}' {size}more than the {MAX_RUN_LOG_BYTES} bytes (1 GiB) a replay "
+            "reads (a 10-minute run logs about 230 MB); replay a part of it, e.g. its first "
+            f"10 minutes: lcm-logfilter -c '.*' -e 600 '{path}' part.lcmlog, or a shorter run")
 
 
 def _plausible_header(data: bytes, position: int) -> bool:
@@ -274,6 +292,7 @@ def _not_lcm_log_problem(data: bytes) -> str | None:
 def _scan_lcm_bytes(data: bytes) -> tuple[list, list[str]]:
     """scan_lcm_log's events and damage of an LCM log's bytes."""
     events = []
+    channels = {}  # a channel's name as bytes -> one str for all its events
     corrupt_regions = corrupt_bytes = lost = 0
     renumbered = []  # file positions of events whose numbers go back or are damaged
     truncated = None
@@ -314,7 +333,8 @@ def _scan_lcm_bytes(data: bytes) -> tuple[list, list[str]]:
                     number = expected_number
         expected_number = number + 1
         start = position + _EVENT_HEADER.size
-        channel = data[start:start + channel_length].decode("ascii")
+        name = data[start:start + channel_length]
+        channel = channels.get(name) or channels.setdefault(name, name.decode("ascii"))
         events.append((timestamp, channel, data[start + channel_length:end]))
         position = end
     damage = []
@@ -556,6 +576,16 @@ def pad_acceleration_bound(scenario) -> float:
     calibration's gain (PadCalibration.piezo_gain), if larger."""
     device = PadCalibration().piezo_gain * PIEZO_INPUT_V
     return max(sensor_bounds(scenario, 0.0).pad_acceleration, device)
+
+
+def compact_tactile_message(message) -> None:
+    """Holds the float fields of a decoded lcmt_tegrasp_tactile as array('d') in place of the
+    tuples of Python floats the decoder makes: 30 values, 24 bytes of a float object each and
+    a tuple's slots (about 1.2 kB a message) become 8 bytes each (about 0.5 kB), for the
+    hundreds of thousands of messages of a long log (1 kHz). Same values, lengths, order."""
+    for field in ("left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",
+                  "right_pad_acceleration"):
+        setattr(message, field, array.array("d", getattr(message, field)))
 
 
 def _plausible_tactile(messages: list, taxel_range: tuple[float, float],
@@ -813,6 +843,8 @@ def read_run_log(path) -> RunLog:
     counts = {}
     try:
         data = read_bounded(path, MAX_RUN_LOG_BYTES)
+    except InputTooLargeError:  # from the file's size, before a byte is read
+        raise RunLogError(too_large_run_log_problem(path)) from None
     except OSError as e:
         raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
     events, damage = _scan_lcm_bytes(data)
@@ -824,15 +856,20 @@ def read_run_log(path) -> RunLog:
         raise RunLogError(f"run log '{path}' holds no LCM message"
                           + (f" ({'; '.join(damage)})" if damage else ""))
     undecodable = {}
-    for timestamp, channel, data in events:
-        counts[channel] = counts.get(channel, 0) + 1
+    del data  # the file's bytes: the events hold their own
+    for k, (timestamp, channel, data) in enumerate(events):
+        events[k] = None  # each event's bytes freed once decoded: they and the messages
+        counts[channel] = counts.get(channel, 0) + 1  # are never all held at once
         if channel in MESSAGE_TYPES:
             try:
                 message = MESSAGE_TYPES[channel].decode(data)
             except (ValueError, struct.error, UnicodeDecodeError, IndexError):
                 undecodable[channel] = undecodable.get(channel, 0) + 1
                 continue
+            if channel == TACTILE_CHANNEL:
+                compact_tactile_message(message)
             decoded[channel].append((timestamp, message))
+    del events
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
     for channel, check, what in ((JACO_STATUS_CHANNEL, check_jaco_status_message, "statuses"),

@@ -177,3 +177,75 @@ def test_a_trial_log_with_zip64_end_records_is_read(tmp_path, monkeypatch):
     assert central_directory_bytes(zip64) == central_directory_bytes(plain) > 0
     arrays = checked_npz_arrays(zip64, ("t", "x"), max_bytes=1000)
     assert arrays["t"].tolist() == [0.0, 1.0, 2.0]
+
+
+@pytest.fixture
+def nothing_is_read(monkeypatch):
+    """Fails the test if a file opened by read_bounded is read (os.fdopen wraps its descriptor
+    into the stream it reads)."""
+    def refuse(*args, **kwargs):
+        raise AssertionError("the file was read before its size was checked")
+    monkeypatch.setattr(files.os, "fdopen", refuse)
+
+
+def _sparse(path, size: int):
+    with open(path, "wb") as stream:
+        stream.truncate(size)  # sparse: no disk space used
+    return path
+
+
+# Rule: a regular file larger than its reader's limit is refused from its size (fstat of the
+# file opened), before a byte of it is read: a 3 GB log cost a 1 GB read (1.24 GB RSS) to
+# refuse. A device or pipe, which fstat cannot size, is still held to the limit by the read.
+def test_a_regular_file_over_the_limit_is_refused_from_its_size_before_reading(
+        tmp_path, nothing_is_read):
+    big = _sparse(tmp_path / "big.bin", 4097)
+    with pytest.raises(files.InputTooLargeError):
+        files.read_bounded(big, 4096)
+
+
+def test_a_regular_file_at_the_limit_is_read_whole(tmp_path):
+    exact = tmp_path / "exact.bin"
+    exact.write_bytes(b"x" * 4096)
+    assert files.read_bounded(exact, 4096) == b"x" * 4096
+
+
+def test_the_bounded_readers_refuse_an_oversized_file_without_reading_it(
+        tmp_path, nothing_is_read):
+    from tegrasp_drake.rig.typed_yaml import MAX_YAML_BYTES, ConfigError, read_yaml_text
+    big = _sparse(tmp_path / "big.yaml", MAX_YAML_BYTES + 1)
+    with pytest.raises(ConfigError, match=f"more than {MAX_YAML_BYTES} bytes of YAML"):
+        read_yaml_text(big, "a scenario")
+    with pytest.raises(files.JsonFileError, match="is larger than 1000 bytes"):
+        files.read_json_file(big, limit=1000, kind="a record")
+
+
+def test_replay_refuses_a_log_over_its_limit_from_its_size_saying_what_to_do(
+        tmp_path, monkeypatch, capfd, nothing_is_read):
+    from tegrasp_drake.runs.hardware_log_reader import MAX_RUN_LOG_BYTES
+    monkeypatch.chdir(tmp_path)
+    log = _sparse(tmp_path / "sparse.lcmlog", 3 * 2**30)
+    assert log.stat().st_size > MAX_RUN_LOG_BYTES
+    code, text = run_cli(["replay", "sparse.lcmlog"], capfd)
+    assert code == 1
+    assert_one_line_error(code, text, "run log 'sparse.lcmlog' is 3221225472 bytes",
+                          f"more than the {MAX_RUN_LOG_BYTES} bytes", "lcm-logfilter",
+                          "a shorter run")
+
+
+def test_a_file_that_grows_after_its_size_is_taken_is_read_to_its_bound(tmp_path, monkeypatch):
+    """read_bounded reads a regular file with a buffer of the size fstat gave; one that grew
+    since is read on, and still refused past the limit."""
+    real_fstat = os.fstat
+
+    def fstat_of_a_smaller_file(descriptor):
+        status = list(real_fstat(descriptor))
+        status[6] = 10  # st_size: the file as it was before it grew
+        return os.stat_result(status)
+    monkeypatch.setattr(files.os, "fstat", fstat_of_a_smaller_file)
+    grown = tmp_path / "grown.bin"
+    grown.write_bytes(b"y" * 3000)
+    assert files.read_bounded(grown, 4096) == b"y" * 3000
+    grown.write_bytes(b"y" * 5000)
+    with pytest.raises(files.InputTooLargeError):
+        files.read_bounded(grown, 4096)
