@@ -189,9 +189,18 @@ def write_atomically(path, data: str | bytes, *, start: bytes) -> pathlib.Path:
     except UserPathError:
         raise
     except OSError as error:
-        raise UserPathError(f"cannot write {path}: {error.strerror or error}; free some space "
-                            "or give a folder you can write", error) from None
+        raise UserPathError(f"cannot write {path}: {error.strerror or error}; "
+                            f"{write_error_remedy(error)}", error) from None
     return pathlib.Path(path)
+
+
+def write_error_remedy(error: OSError) -> str:
+    """What to do about a write that failed with `error`, in the words every writer's error
+    line ends with: room for a full disk or quota (ENOSPC, EDQUOT), another folder otherwise
+    (no permission, a read-only disk, ...), where space would not help."""
+    if error.errno in (errno.ENOSPC, errno.EDQUOT):
+        return "free some space or write it to another disk"
+    return "give a folder you can write"
 
 
 @contextlib.contextmanager

@@ -79,6 +79,50 @@ def test_a_dry_run_refuses_the_record_places_the_run_refuses(make, words, tmp_pa
     assert dry[1] == real[1]
 
 
+# Rule: a `trials` folder this user cannot write in (another user's) is refused before any
+# trial runs, by the real run and its dry run alike, as a folder that cannot be used (exit 1):
+# a trial's result is never simulated only to be lost.
+def test_a_trials_folder_that_cannot_be_written_is_refused_before_any_trial(
+        tmp_path, capfd, monkeypatch):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0], [0.01, 0.0]]\n")
+    out = tmp_path / "out"
+    argv = ["sweep", "--spec", str(spec), "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    records = sorted((out / "trials").glob("*.json"))
+    records[0].unlink()
+    kept = records[1].read_bytes()
+    access = files.os.access  # the folder is another user's (root ignores modes: said here)
+    monkeypatch.setattr(files.os, "access", lambda path, mode, **kw: (
+        False if str(path) == str(out / "trials") else access(path, mode, **kw)))
+    dry = run_cli([*argv, "--dry-run"], capfd)
+    real = run_cli(argv, capfd)
+    assert dry[0] == real[0] == 1, (dry, real)
+    assert_one_line_error(real[0], real[1], f"{out / 'trials'} is not writable",
+                          "give a folder you can write", "nothing was run")
+    assert "free some space" not in real[1]
+    assert dry[1] == real[1]
+    assert not records[0].exists() and records[1].read_bytes() == kept
+
+
+def test_a_write_refused_for_permission_is_not_told_to_free_space(tmp_path, monkeypatch):
+    def refused(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+    monkeypatch.setattr(files, "staged_file", refused)
+    with pytest.raises(files.UserPathError) as raised:
+        files.write_atomically(tmp_path / "a.json", "{}", start=files.JSON_OBJECT_START)
+    assert "Permission denied; give a folder you can write" in str(raised.value)
+    assert "space" not in str(raised.value)
+
+    def full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(files, "staged_file", full)
+    with pytest.raises(files.UserPathError, match="No space left on device; free some space"):
+        files.write_atomically(tmp_path / "a.json", "{}", start=files.JSON_OBJECT_START)
+
+
 def test_a_dry_run_plans_over_a_corrupt_record_the_run_sets_aside(tmp_path, capfd):
     out = tmp_path / "out"
     trial_id = expand_trials(SweepSpec(objects=("box",), controllers=("open_loop",),
