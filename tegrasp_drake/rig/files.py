@@ -320,6 +320,39 @@ def folder_problem(path) -> str | None:
     return None
 
 
+def _unreadable_folder_error(folder, error: OSError) -> "UserPathError":
+    return UserPathError(f"{folder} cannot be read ({error.strerror or error}); ask its owner "
+                         "to make it readable, or give a folder you can read", error)
+
+
+def is_folder(path) -> bool:
+    """Whether a folder is at `path` (symlinks followed); False when nothing is there or a
+    file is on its path; UserPathError naming it when it cannot be looked at (no permission
+    to search a folder on its path, an I/O error), which pathlib's is_dir() calls False."""
+    try:
+        return stat.S_ISDIR(os.stat(path).st_mode)
+    except (FileNotFoundError, NotADirectoryError):
+        return False
+    except OSError as error:
+        raise _unreadable_folder_error(path, error) from None
+
+
+def folder_entries(folder) -> list[pathlib.Path] | None:
+    """The entries of `folder`, sorted by name; None when no folder is there (nothing at the
+    path, or a file on it). UserPathError naming it when it is there but cannot be listed
+    (no permission, an I/O error): a folder this user cannot read is not an empty or absent
+    one, which is what pathlib's is_dir(), exists() and glob() would make of it."""
+    folder = pathlib.Path(folder)
+    try:
+        with os.scandir(folder) as scan:
+            names = sorted(entry.name for entry in scan)
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except OSError as error:
+        raise _unreadable_folder_error(folder, error) from None
+    return [folder / name for name in names]
+
+
 def free_bytes(path) -> int:
     """The bytes this user may still write on the disk holding `path` (its nearest existing
     part): the one free-space probe of the package (shutil.disk_usage, the blocks available
@@ -833,10 +866,14 @@ MAX_STATE_FILE_BYTES = 16_000_000
 
 class JsonFileError(UserPathError):
     """A JSON file read_json_file cannot return: str() is one line, the file, what is wrong
-    and the remedy; `problem` says only what is wrong, for a reader that words its own error."""
+    and the remedy; `problem` says only what is wrong, for a reader that words its own error;
+    `unreadable` is the OSError that kept the file from being read (no permission, an I/O
+    error), None when it was read, or is missing or not a file: a file this user cannot
+    read is not a damaged one, and is never to be remade or set aside for it."""
 
-    def __init__(self, path, problem: str, remedy: str = ""):
+    def __init__(self, path, problem: str, remedy: str = "", unreadable: OSError | None = None):
         self.path, self.problem = str(path), one_line(problem)
+        self.unreadable = unreadable
         super().__init__(error_line(f"{path}: {problem}" + (f"; {remedy}" if remedy else "")))
 
 
@@ -861,7 +898,8 @@ def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "
     except NotAFileError as error:  # which kind of file it is, without "give a file"
         problem = error.strerror.split(";")[0]
     except OSError as error:
-        problem = f"cannot be read ({error.strerror or error})"
+        raise JsonFileError(path, f"cannot be read ({error.strerror or error})", remedy,
+                            unreadable=error) from None
     except UnicodeDecodeError as error:
         problem = f"is not {encoding.upper()} text (byte {error.start})"
     except json.JSONDecodeError as error:

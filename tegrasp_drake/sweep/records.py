@@ -26,7 +26,8 @@ from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, read_json_file,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, folder_entries,
+                                     read_json_file,
                                      remove_stale_staging_files_in, replace_problem,
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
@@ -461,11 +462,12 @@ def read_record(path) -> tuple[dict | None, str | None]:
 @public_api
 def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
     """Reads every record under `<out_dir>/trials` (temporary files ignored; no trials folder:
-    no records); UserPathError for a path that is not a folder."""
+    no records); UserPathError for a path that is not a folder, or a trials folder this user
+    cannot read (not one without records)."""
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt, others = {}, {}, []
-    if folder.is_dir():
-        for path in sorted(folder.glob("*.json")):
+    for path in folder_entries(folder) or []:  # UserPathError: a trials/ that cannot be read
+        if path.suffix == ".json":
             if record_name_trial_id(path.name) is None:
                 others.append(path)  # no sweep writes this name: not a record, not read
                 continue

@@ -606,3 +606,34 @@ def test_an_object_folder_that_cannot_be_written_is_refused_before_simulating(
     with pytest.raises(events_folder.EventsDestinationError, match="box is not writable"):
         save_memorized_events(events, memorized_events("box", seed=4))
     assert folder_contents(events) == before
+
+
+def _denied_for(paths, real):
+    """`real` (os.lstat, os.open, os.scandir), raising EACCES for `paths`: another user's files,
+    as root (who ignores modes) cannot make them."""
+    def call(path, *args, **kwargs):
+        if str(path) in {str(p) for p in paths}:
+            raise PermissionError(13, "Permission denied", str(path))
+        return real(path, *args, **kwargs)
+    return call
+
+
+# Rule: an index this user cannot look at (its folder may be listed but not searched) or
+# read is said as one that cannot be read, with what to do; never as "no index.json", as a
+# folder of other files, or with the advice to record the events again.
+def test_an_index_that_cannot_be_read_is_said_so_not_absent_or_to_be_remade(
+        tmp_path, capfd, monkeypatch):
+    events = tmp_path / "ev"
+    save_memorized_events(events, memorized_events("box", seed=3))
+    index = events / "index.json"
+    monkeypatch.setattr(os, "lstat", _denied_for([index], os.lstat))
+    monkeypatch.setattr(os, "open", _denied_for([index], os.open))
+    assert event_file.has_index(events)
+    with pytest.raises(event_file.MemorizedEventError) as refused:
+        events_folder.find_memorized_events([events], "box")
+    assert f"{index}: cannot be read (Permission denied)" in str(refused.value)
+    assert "Remake" not in str(refused.value) and "no index.json" not in str(refused.value)
+    code, text = run_cli(["plot", "events", "--events", str(events),
+                          "--out", str(tmp_path / "e.png")], capfd)
+    assert_one_line_error(code, text, "cannot be read (Permission denied)", "readable")
+    assert "Remake" not in text and not (tmp_path / "e.png").exists()

@@ -809,3 +809,25 @@ def test_a_sweep_into_a_folder_of_another_study_is_refused_before_it_runs(tmp_pa
                           "this sweep's, not yet run", "nothing was run")
     assert sorted(path.name for path in (out / "trials").iterdir()) == before
     assert sweep("heuristic", 0)[0] == 0
+
+
+# Rule: a trials folder this user cannot read is said to be one, in one line naming it; not
+# a folder without records.
+def test_a_trials_folder_that_cannot_be_read_is_not_called_empty(tmp_path, capfd, monkeypatch):
+    out = tmp_path / "out"
+    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
+            "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    scandir = files.os.scandir
+
+    def denied(path="."):
+        if str(path) == str(out / "trials"):
+            raise PermissionError(13, "Permission denied", str(path))
+        return scandir(path)
+    monkeypatch.setattr(files.os, "scandir", denied)
+    with pytest.raises(files.UserPathError, match="trials cannot be read .Permission denied"):
+        load_records(out)
+    code, text = run_cli(["plot", "table1", str(out), "--out", str(tmp_path / "t.png")], capfd)
+    assert_one_line_error(code, text, f"{out / 'trials'} cannot be read (Permission denied)")
+    assert "no trial records" not in text and not (tmp_path / "t.png").exists()
