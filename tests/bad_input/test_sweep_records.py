@@ -831,3 +831,32 @@ def test_a_trials_folder_that_cannot_be_read_is_not_called_empty(tmp_path, capfd
     code, text = run_cli(["plot", "table1", str(out), "--out", str(tmp_path / "t.png")], capfd)
     assert_one_line_error(code, text, f"{out / 'trials'} cannot be read (Permission denied)")
     assert "no trial records" not in text and not (tmp_path / "t.png").exists()
+
+
+# Rule: a record this user cannot read (another user's: simulated, as root ignores modes) is
+# no corrupt record: a sweep, its dry run and the reports stop in one line naming it, and it
+# is neither set aside nor run again.
+def test_a_record_that_cannot_be_read_is_not_set_aside_or_rerun(tmp_path, capfd, monkeypatch):
+    out = tmp_path / "out"
+    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
+            "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    record = sorted((out / "trials").glob("*.json"))[0]
+    kept, names = record.read_bytes(), sorted(p.name for p in (out / "trials").iterdir())
+    read_bounded = files.read_bounded
+
+    def denied(path, *args, **kwargs):
+        if str(path) == str(record):
+            raise PermissionError(13, "Permission denied", str(path))
+        return read_bounded(path, *args, **kwargs)
+    monkeypatch.setattr(files, "read_bounded", denied)
+    for command in ([*argv, "--dry-run"], argv,
+                    ["plot", "table1", str(out), "--out", str(tmp_path / "t.png")]):
+        code, text = run_cli(command, capfd)
+        assert code == 1, text
+        assert_one_line_error(code, text, f"{record}: cannot be read (Permission denied)",
+                              "neither set aside nor run again")
+        assert "corrupt" not in text
+    assert sorted(p.name for p in (out / "trials").iterdir()) == names  # nothing set aside
+    assert record.read_bytes() == kept
