@@ -13,6 +13,7 @@ suffix names the format."""
 
 import argparse
 import logging
+import os
 import pathlib
 
 from tegrasp_drake.commands.events_option import check_events_folder
@@ -142,14 +143,15 @@ def _plot_trial(args, out) -> str:
 
 
 def _plot_sweep(args, out) -> str:
+    from tegrasp_drake.rig.files import is_folder
     from tegrasp_drake.sweep import load_records
     _require_source(args, "a sweep's results folder (e.g. analysis/results_seed0)")
-    if not pathlib.Path(args.source).is_dir():
+    if not is_folder(args.source):  # UserPathError when it cannot be read
         raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
                          f"({args.source} is not a folder; give the --out folder of "
                          "`tegrasp sweep`)")
     trials = pathlib.Path(args.source) / "trials"
-    if trials.exists() and not trials.is_dir():
+    if not is_folder(trials) and os.path.lexists(trials):
         raise SystemExit(f"tegrasp: error: {trials} is not a folder of trial records (a "
                          "sweep writes its records there); give the --out folder of "
                          "`tegrasp sweep`")

@@ -52,7 +52,8 @@ from tegrasp_drake.sweep.spec import (
     validate_spec,
 )
 from tegrasp_drake.sweep.spec_file import LoadSweepSpec
-from tegrasp_drake.rig.typed_yaml import ConfigError, RefinedSettings, set_option
+from tegrasp_drake.rig.typed_yaml import (ConfigError, RefinedSettings, UnreadableFileError,
+                                         set_option)
 from tegrasp_drake.rig.usage_parser import AppendSettings
 
 DEFAULT_TRIAL_FUNCTION = "tegrasp_drake.sweep.trial_function:run_trial_from_spec"
@@ -403,7 +404,8 @@ def refusals_said():
     """The refusals of a command that runs sweeps (sweep, transfer, sensitivity), each said
     in one line on stderr, `tegrasp: error: ...` (ERROR_LEAD), with its exit code set on the
     Refusal yielded: 1 for bad input (OptionError), an output folder that cannot take a
-    record (RecordPlaceError) and a scheduler lost mid-run
+    record (RecordPlaceError), a spec file that cannot be read (UnreadableFileError: no
+    permission, an I/O error) and a scheduler lost mid-run
     (SchedulerLostError: the unfinished trials run again with the same command), 2 for a
     spec refused (ConfigError, SweepError). Memorized events that cannot be read
     (MemorizedEventError, e.g. a damaged DIR/events) end the command as bad input,
@@ -412,7 +414,7 @@ def refusals_said():
     refusal = Refusal()
     try:
         yield refusal
-    except (OptionError, SchedulerLostError, RecordPlaceError) as error:
+    except (OptionError, SchedulerLostError, RecordPlaceError, UnreadableFileError) as error:
         print(f"{ERROR_LEAD}{error_line(str(error))}", file=sys.stderr)
         refusal.exit_code = 1
     except (ConfigError, SweepError) as error:

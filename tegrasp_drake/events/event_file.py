@@ -42,10 +42,17 @@ MAX_EVENT_FILE_BYTES = 16_000_000
 class MemorizedEventError(Exception):
     """A memorized event or index file is missing or unusable."""
 
-    def __init__(self, path, problem: str, object_name: str | None = None):
+    def __init__(self, path, problem: str, object_name: str | None = None,
+                 remedy: str | None = None):
         self.path = pathlib.Path(path)
         self.problem = one_line(problem)  # what is wrong, without the path and the remedy
-        super().__init__(error_line(f"{self.path}: {problem}. {remake_advice(object_name)}"))
+        remedy = remedy or remake_advice(object_name)
+        super().__init__(error_line(f"{self.path}: {problem}. {remedy}"))
+
+
+# What to do about an event file or index this user cannot read (no permission, an I/O
+# error): it is not damaged, so remaking it is no remedy.
+UNREADABLE_REMEDY = "Ask its owner to make it readable, or give an events folder you can read."
 
 
 def remake_advice(object_name: str | None) -> str:
@@ -132,7 +139,8 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
         return read_json_file(path, limit=MAX_EVENT_FILE_BYTES, check=format_problem,
                               kind="an event file or index")
     except JsonFileError as error:
-        raise MemorizedEventError(path, error.problem, object_name) from None
+        raise MemorizedEventError(path, error.problem, object_name, remedy=(
+            UNREADABLE_REMEDY if error.unreadable else None)) from None
 
 
 @functools.lru_cache(maxsize=16)
@@ -543,8 +551,16 @@ def has_index(events_dir) -> bool:
     a device or a symlink that loops or leads nowhere, which read_index then refuses by name.
     False only when nothing is there (no events saved in that folder yet). Every reader that
     passes over a folder without an index asks this, not is_file(), so an index that cannot
-    be read is never skipped in silence for the next folder's events."""
-    return os.path.lexists(pathlib.Path(events_dir) / INDEX_FILE)
+    be read is never skipped in silence for the next folder's events; nor is one that cannot
+    be looked at (a folder this user may list but not search, EACCES): True, for read_index
+    to say so (os.path.lexists would call it absent)."""
+    try:
+        os.lstat(pathlib.Path(events_dir) / INDEX_FILE)
+    except (FileNotFoundError, NotADirectoryError):
+        return False
+    except OSError:
+        return True
+    return True
 
 
 def read_index(events_dir) -> list[dict]:

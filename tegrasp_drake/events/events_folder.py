@@ -9,7 +9,8 @@ import pathlib
 from typing import Annotated
 from collections.abc import Iterable, Sequence
 
-from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, held_folder,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, FolderHeldError, folder_problem,
+                                     held_folder,
                                      interruptions_deferred, replace_problem,
                                      remove_stale_staging_files_of, staged_file)
 from tegrasp_drake.rig.objects import object_name_problem
@@ -40,7 +41,8 @@ def check_events_destination(events_dir, object_names: Iterable[str], *,
                              keep_other_objects: bool = True) -> None:
     """EventsDestinationError unless save_memorized_events can put `object_names`' events and the
     index into `events_dir`: no folder or non-folder path part where a file belongs and, when other
-    objects' entries are kept, an index that reads; and no file there that the recording
+    objects' entries are kept, an index that reads; the folder and each object's folder ones
+    this user can write in (folder_problem); and no file there that the recording
     did not write (recorded_file_problem): a save replaces an object's event files and the
     index, and removes the object's event files it does not write again, so a file of the
     user's at one of those paths would be lost; and a folder that holds no index but other
@@ -64,6 +66,15 @@ def check_events_destination(events_dir, object_names: Iterable[str], *,
     problem = events_folder_problem(events_dir, writing=True)  # the readers' one check
     if problem:
         raise EventsDestinationError(f"{events_dir} {problem}")
+    for folder in [events_dir, *(events_dir / name for name in object_names)]:
+        # The save stages each file beside its target and renames it there, and removes an
+        # object's stale files: the folder (or, not there yet, the one it is made in) must be
+        # one this user writes in, whoever made it.
+        problem = folder_problem(folder)
+        if problem:
+            raise EventsDestinationError(
+                f"{problem} (the recording writes the event files there); give an events "
+                "folder you can write")
     if keep_other_objects and os.path.lexists(index):
         try:
             read_index(events_dir)

@@ -5,7 +5,7 @@ and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib
 import os
 import pathlib
 
-from tegrasp_drake.rig.files import UserPathError, temporary_sibling
+from tegrasp_drake.rig.files import UserPathError, temporary_sibling, write_error_remedy
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 # How a figure file of each format starts, as matplotlib writes it: PNG's signature (PNG
@@ -113,7 +113,7 @@ def save_figure(figure, path, *, dpi: float = PNG_DPI, tight: bool = False) -> p
                            bbox_inches="tight" if tight else None)
     except OSError as error:
         raise UserPathError(f"cannot write the figure {path}: {error.strerror or error}; "
-                            "give a file in a folder you can write, with room", error) from None
+                            f"{write_error_remedy(error)}", error) from None
     return path
 
 

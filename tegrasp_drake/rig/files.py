@@ -189,9 +189,18 @@ def write_atomically(path, data: str | bytes, *, start: bytes) -> pathlib.Path:
     except UserPathError:
         raise
     except OSError as error:
-        raise UserPathError(f"cannot write {path}: {error.strerror or error}; free some space "
-                            "or give a folder you can write", error) from None
+        raise UserPathError(f"cannot write {path}: {error.strerror or error}; "
+                            f"{write_error_remedy(error)}", error) from None
     return pathlib.Path(path)
+
+
+def write_error_remedy(error: OSError) -> str:
+    """What to do about a write that failed with `error`, in the words every writer's error
+    line ends with: room for a full disk or quota (ENOSPC, EDQUOT), another folder otherwise
+    (no permission, a read-only disk, ...), where space would not help."""
+    if error.errno in (errno.ENOSPC, errno.EDQUOT):
+        return "free some space or write it to another disk"
+    return "give a folder you can write"
 
 
 @contextlib.contextmanager
@@ -309,6 +318,39 @@ def folder_problem(path) -> str | None:
         return (f"{place} cannot be written in: making a folder there failed "
                 f"({e.strerror or e})")
     return None
+
+
+def _unreadable_folder_error(folder, error: OSError) -> "UserPathError":
+    return UserPathError(f"{folder} cannot be read ({error.strerror or error}); ask its owner "
+                         "to make it readable, or give a folder you can read", error)
+
+
+def is_folder(path) -> bool:
+    """Whether a folder is at `path` (symlinks followed); False when nothing is there or a
+    file is on its path; UserPathError naming it when it cannot be looked at (no permission
+    to search a folder on its path, an I/O error), which pathlib's is_dir() calls False."""
+    try:
+        return stat.S_ISDIR(os.stat(path).st_mode)
+    except (FileNotFoundError, NotADirectoryError):
+        return False
+    except OSError as error:
+        raise _unreadable_folder_error(path, error) from None
+
+
+def folder_entries(folder) -> list[pathlib.Path] | None:
+    """The entries of `folder`, sorted by name; None when no folder is there (nothing at the
+    path, or a file on it). UserPathError naming it when it is there but cannot be listed
+    (no permission, an I/O error): a folder this user cannot read is not an empty or absent
+    one, which is what pathlib's is_dir(), exists() and glob() would make of it."""
+    folder = pathlib.Path(folder)
+    try:
+        with os.scandir(folder) as scan:
+            names = sorted(entry.name for entry in scan)
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    except OSError as error:
+        raise _unreadable_folder_error(folder, error) from None
+    return [folder / name for name in names]
 
 
 def free_bytes(path) -> int:
@@ -837,10 +879,14 @@ MAX_STATE_FILE_BYTES = 16_000_000
 
 class JsonFileError(UserPathError):
     """A JSON file read_json_file cannot return: str() is one line, the file, what is wrong
-    and the remedy; `problem` says only what is wrong, for a reader that words its own error."""
+    and the remedy; `problem` says only what is wrong, for a reader that words its own error;
+    `unreadable` is the OSError that kept the file from being read (no permission, an I/O
+    error), None when it was read, or is missing or not a file: a file this user cannot
+    read is not a damaged one, and is never to be remade or set aside for it."""
 
-    def __init__(self, path, problem: str, remedy: str = ""):
+    def __init__(self, path, problem: str, remedy: str = "", unreadable: OSError | None = None):
         self.path, self.problem = str(path), one_line(problem)
+        self.unreadable = unreadable
         super().__init__(error_line(f"{path}: {problem}" + (f"; {remedy}" if remedy else "")))
 
 
@@ -865,7 +911,8 @@ def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "
     except NotAFileError as error:  # which kind of file it is, without "give a file"
         problem = error.strerror.split(";")[0]
     except OSError as error:
-        problem = f"cannot be read ({error.strerror or error})"
+        raise JsonFileError(path, f"cannot be read ({error.strerror or error})", remedy,
+                            unreadable=error) from None
     except UnicodeDecodeError as error:
         problem = f"is not {encoding.upper()} text (byte {error.start})"
     except json.JSONDecodeError as error:

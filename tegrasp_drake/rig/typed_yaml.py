@@ -50,6 +50,11 @@ class YamlSyntaxError(ConfigError):
     caller that also takes free text."""
 
 
+class UnreadableFileError(ConfigError):
+    """A configuration file this user cannot read (no permission, an I/O error): a file that
+    cannot be read (exit 1 wherever it is given), not one refused for what it holds."""
+
+
 def read_yaml_file(path: str | pathlib.Path, what: str):
     """The parsed content of the YAML file at `path` (None if it is empty); `what` names the
     file in errors, e.g. "the scenario file"."""
@@ -76,7 +81,7 @@ def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
         raise ConfigError(f"{path}: cannot read {what}: it is not UTF-8 text (byte "
                           f"{e.start}); give a YAML file") from None
     except OSError as e:
-        raise ConfigError(f"{path}: cannot read {what}: {e.strerror or e}") from None
+        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}") from None
     return text
 
 

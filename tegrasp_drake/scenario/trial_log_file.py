@@ -194,6 +194,11 @@ def written_trial_log(path: pathlib.Path, *,
     package wrote; a log with a checksum must still match it): what a run asks of an earlier
     run's log it would replace (a file of the user's, or a log edited by hand, is not one)."""
     check_trial_log_file(path)
+    try:  # a log this user cannot open (another user's) is not a damaged one: no remake
+        os.close(os.open(path, os.O_RDONLY | os.O_NONBLOCK))
+    except OSError as e:
+        raise TrialLogError(f"trial log '{path}' cannot be read ({e.strerror or e}); ask its "
+                            "owner to make it readable, or give a log you can read") from None
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",),

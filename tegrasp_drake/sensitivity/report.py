@@ -10,7 +10,7 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.figures.figure_files import figure_path, new_figure, save_figure
-from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
+from tegrasp_drake.rig.files import MARKDOWN_START, is_folder, write_atomically
 from tegrasp_drake.sensitivity.study import DEFAULT_POINT, point_folder_cell, transfer_spec
 from tegrasp_drake.sweep.failure_classes import FAILURE_CLASSES, failure_class
 from tegrasp_drake.sweep.records import load_records, record_result
@@ -47,7 +47,7 @@ def point_rows(spec, points, out_dir) -> list[PointRow]:
     for point in points:
         memorizing, running = point_folder_cell(spec, point)
         folder = cell_folder(out_dir, memorizing, running)
-        if not (folder / "trials").is_dir():
+        if not is_folder(folder / "trials"):  # UserPathError when it cannot be looked at
             continue
         planned = {t.trial_id: t for t in expand_trials(running_sweep(matrix, running))}
         records = [r for trial_id, r in load_records(folder).records.items()

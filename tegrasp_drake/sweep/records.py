@@ -26,7 +26,8 @@ from typing import Annotated
 from dataclasses import dataclass
 from pathlib import Path
 
-from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, read_json_file,
+from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, UserPathError,
+                                     folder_entries, read_json_file,
                                      remove_stale_staging_files_in, replace_problem,
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
@@ -448,12 +449,18 @@ def result_problem(result) -> str | None:
 
 
 def read_record(path) -> tuple[dict | None, str | None]:
-    """(record, None) for a valid record file, (None, reason) otherwise."""
+    """(record, None) for a valid record file, (None, reason) for a damaged one; UserPathError
+    naming it for one this user cannot read (no permission, an I/O error): not a damaged
+    record, so never set aside or run again (it may be another user's good record)."""
     try:
         record = read_json_file(path, limit=MAX_RECORD_BYTES, encoding="ascii",
                                 kind="a trial record",
                                 check=lambda data: check_record(data, Path(path).name))
     except JsonFileError as error:
+        if error.unreadable is not None:
+            raise UserPathError(f"trial record {path}: {error.problem}; ask its owner to make "
+                                "it readable, or give a folder you can read; it was neither "
+                                "set aside nor run again", error.unreadable) from None
         return None, error.problem
     return record, None
 
@@ -461,11 +468,12 @@ def read_record(path) -> tuple[dict | None, str | None]:
 @public_api
 def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
     """Reads every record under `<out_dir>/trials` (temporary files ignored; no trials folder:
-    no records); UserPathError for a path that is not a folder."""
+    no records); UserPathError for a path that is not a folder, or a trials folder this user
+    cannot read (not one without records)."""
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt, others = {}, {}, []
-    if folder.is_dir():
-        for path in sorted(folder.glob("*.json")):
+    for path in folder_entries(folder) or []:  # UserPathError: a trials/ that cannot be read
+        if path.suffix == ".json":
             if record_name_trial_id(path.name) is None:
                 others.append(path)  # no sweep writes this name: not a record, not read
                 continue

@@ -47,7 +47,8 @@ from tegrasp_drake.sweep.records import (
 from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, check_sweep_size,
                                       expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
-from tegrasp_drake.rig.files import FolderHeldError, UserPathError, held_folder
+from tegrasp_drake.rig.files import (FolderHeldError, UserPathError, folder_problem, held_folder,
+                                     non_folder_on_path)
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig.echo import shorten
@@ -340,10 +341,16 @@ def check_sweep_folder(spec: SweepSpec, trial_function: Callable, out_dir
 
 
 def _check_records_writable(out_dir, pending, set_aside=()) -> None:
-    """SweepError naming the first record of the `pending` trials that could not be written
+    """SweepError naming the trials folder when this user cannot write in it (folder_problem),
+    or the first record of the `pending` trials that could not be written
     (unwritable_records: a folder in its place, `trials` not a folder), before any trial runs:
     run_sweep's check, and check_sweep_folder's for a dry run. `set_aside`: the corrupt records
     a run moves away first (not there once it writes)."""
+    folder = Path(out_dir) / TRIALS_FOLDER
+    problem = (pending or set_aside) and not non_folder_on_path(folder) and folder_problem(folder)
+    if problem:  # (a file as trials/ is said per record below)
+        raise RecordPlaceError(f"the trial records cannot be written: {problem}; give a "
+                               "folder you can write; nothing was run")
     set_aside = {Path(path) for path in set_aside if _set_aside(Path(path))}
     unwritable = [(path, problem) for path, problem in
                   unwritable_records(out_dir, [trial["trial_id"] for trial in pending])

@@ -13,7 +13,7 @@ from tegrasp_drake.sweep.detection_report import event_trigger_rows
 from tegrasp_drake.sweep.records import load_records, record_result
 from tegrasp_drake.sweep.spec import expand_trials
 from tegrasp_drake.transfer.matrix import cell_folder, cell_name, running_sweep
-from tegrasp_drake.rig.files import MARKDOWN_START, write_atomically
+from tegrasp_drake.rig.files import MARKDOWN_START, is_folder, write_atomically
 
 TABLE_FILE = "transfer.md"
 FIGURE_STEM = "transfer_matrix"
@@ -53,7 +53,7 @@ def cell_rows(spec, out_dir) -> list[CellRow]:
     rows = []
     for memorizing, running in spec.cells:
         folder = cell_folder(out_dir, memorizing, running)
-        if not (folder / "trials").is_dir():
+        if not is_folder(folder / "trials"):  # UserPathError when it cannot be looked at
             continue
         planned = {trial.trial_id: trial.controller
                    for trial in expand_trials(running_sweep(spec, running))}

@@ -9,7 +9,7 @@ import pytest
 
 from tegrasp_drake.events import event_file, events_folder
 from tegrasp_drake.events.events_folder import save_memorized_events
-from tegrasp_drake.rig import paths
+from tegrasp_drake.rig import files, paths
 from tests.bad_input.probes import (assert_one_line_error, edit_json, folder_contents,
                                     memorized_events, run_cli, run_probe)
 
@@ -587,3 +587,53 @@ def test_a_folder_that_cannot_be_made_in_says_so_and_what_to_do(capfd, no_simula
     assert_one_line_error(code, text, "--events /proc: /proc cannot be written in: making a "
                           "folder there failed", "give a folder you can write")
     assert "not writable (No such file" not in text
+
+
+# Rule: an object's events folder this user cannot write in (another user's), whose files the
+# recording replaces, is refused before record-events simulates, and by save_memorized_events
+# before it writes: the one check (check_events_destination) both ask.
+def test_an_object_folder_that_cannot_be_written_is_refused_before_simulating(
+        tmp_path, capfd, monkeypatch, no_simulation):
+    events = tmp_path / "ev"
+    save_memorized_events(events, memorized_events("box", seed=3))
+    before = folder_contents(events)
+    access = files.os.access  # root ignores modes: the folder's owner's refusal is said here
+    monkeypatch.setattr(files.os, "access", lambda path, mode, **kw: (
+        False if str(path) == str(events / "box") else access(path, mode, **kw)))
+    code, text = run_cli(["record-events", "--object", "box", "--events", str(events)], capfd)
+    assert_one_line_error(code, text, f"--events {events}: {events / 'box'} is not writable",
+                          "give an events folder you can write", "nothing was recorded")
+    with pytest.raises(events_folder.EventsDestinationError, match="box is not writable"):
+        save_memorized_events(events, memorized_events("box", seed=4))
+    assert folder_contents(events) == before
+
+
+def _denied_for(paths, real):
+    """`real` (os.lstat, os.open, os.scandir), raising EACCES for `paths`: another user's files,
+    as root (who ignores modes) cannot make them."""
+    def call(path, *args, **kwargs):
+        if str(path) in {str(p) for p in paths}:
+            raise PermissionError(13, "Permission denied", str(path))
+        return real(path, *args, **kwargs)
+    return call
+
+
+# Rule: an index this user cannot look at (its folder may be listed but not searched) or
+# read is said as one that cannot be read, with what to do; never as "no index.json", as a
+# folder of other files, or with the advice to record the events again.
+def test_an_index_that_cannot_be_read_is_said_so_not_absent_or_to_be_remade(
+        tmp_path, capfd, monkeypatch):
+    events = tmp_path / "ev"
+    save_memorized_events(events, memorized_events("box", seed=3))
+    index = events / "index.json"
+    monkeypatch.setattr(os, "lstat", _denied_for([index], os.lstat))
+    monkeypatch.setattr(os, "open", _denied_for([index], os.open))
+    assert event_file.has_index(events)
+    with pytest.raises(event_file.MemorizedEventError) as refused:
+        events_folder.find_memorized_events([events], "box")
+    assert f"{index}: cannot be read (Permission denied)" in str(refused.value)
+    assert "Remake" not in str(refused.value) and "no index.json" not in str(refused.value)
+    code, text = run_cli(["plot", "events", "--events", str(events),
+                          "--out", str(tmp_path / "e.png")], capfd)
+    assert_one_line_error(code, text, "cannot be read (Permission denied)", "readable")
+    assert "Remake" not in text and not (tmp_path / "e.png").exists()

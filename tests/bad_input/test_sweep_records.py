@@ -79,6 +79,50 @@ def test_a_dry_run_refuses_the_record_places_the_run_refuses(make, words, tmp_pa
     assert dry[1] == real[1]
 
 
+# Rule: a `trials` folder this user cannot write in (another user's) is refused before any
+# trial runs, by the real run and its dry run alike, as a folder that cannot be used (exit 1):
+# a trial's result is never simulated only to be lost.
+def test_a_trials_folder_that_cannot_be_written_is_refused_before_any_trial(
+        tmp_path, capfd, monkeypatch):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0], [0.01, 0.0]]\n")
+    out = tmp_path / "out"
+    argv = ["sweep", "--spec", str(spec), "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    records = sorted((out / "trials").glob("*.json"))
+    records[0].unlink()
+    kept = records[1].read_bytes()
+    access = files.os.access  # the folder is another user's (root ignores modes: said here)
+    monkeypatch.setattr(files.os, "access", lambda path, mode, **kw: (
+        False if str(path) == str(out / "trials") else access(path, mode, **kw)))
+    dry = run_cli([*argv, "--dry-run"], capfd)
+    real = run_cli(argv, capfd)
+    assert dry[0] == real[0] == 1, (dry, real)
+    assert_one_line_error(real[0], real[1], f"{out / 'trials'} is not writable",
+                          "give a folder you can write", "nothing was run")
+    assert "free some space" not in real[1]
+    assert dry[1] == real[1]
+    assert not records[0].exists() and records[1].read_bytes() == kept
+
+
+def test_a_write_refused_for_permission_is_not_told_to_free_space(tmp_path, monkeypatch):
+    def refused(*args, **kwargs):
+        raise PermissionError(13, "Permission denied")
+    monkeypatch.setattr(files, "staged_file", refused)
+    with pytest.raises(files.UserPathError) as raised:
+        files.write_atomically(tmp_path / "a.json", "{}", start=files.JSON_OBJECT_START)
+    assert "Permission denied; give a folder you can write" in str(raised.value)
+    assert "space" not in str(raised.value)
+
+    def full(*args, **kwargs):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(files, "staged_file", full)
+    with pytest.raises(files.UserPathError, match="No space left on device; free some space"):
+        files.write_atomically(tmp_path / "a.json", "{}", start=files.JSON_OBJECT_START)
+
+
 def test_a_dry_run_plans_over_a_corrupt_record_the_run_sets_aside(tmp_path, capfd):
     out = tmp_path / "out"
     trial_id = expand_trials(SweepSpec(objects=("box",), controllers=("open_loop",),
@@ -765,3 +809,54 @@ def test_a_sweep_into_a_folder_of_another_study_is_refused_before_it_runs(tmp_pa
                           "this sweep's, not yet run", "nothing was run")
     assert sorted(path.name for path in (out / "trials").iterdir()) == before
     assert sweep("heuristic", 0)[0] == 0
+
+
+# Rule: a trials folder this user cannot read is said to be one, in one line naming it; not
+# a folder without records.
+def test_a_trials_folder_that_cannot_be_read_is_not_called_empty(tmp_path, capfd, monkeypatch):
+    out = tmp_path / "out"
+    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
+            "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    scandir = files.os.scandir
+
+    def denied(path="."):
+        if str(path) == str(out / "trials"):
+            raise PermissionError(13, "Permission denied", str(path))
+        return scandir(path)
+    monkeypatch.setattr(files.os, "scandir", denied)
+    with pytest.raises(files.UserPathError, match="trials cannot be read .Permission denied"):
+        load_records(out)
+    code, text = run_cli(["plot", "table1", str(out), "--out", str(tmp_path / "t.png")], capfd)
+    assert_one_line_error(code, text, f"{out / 'trials'} cannot be read (Permission denied)")
+    assert "no trial records" not in text and not (tmp_path / "t.png").exists()
+
+
+# Rule: a record this user cannot read (another user's: simulated, as root ignores modes) is
+# no corrupt record: a sweep, its dry run and the reports stop in one line naming it, and it
+# is neither set aside nor run again.
+def test_a_record_that_cannot_be_read_is_not_set_aside_or_rerun(tmp_path, capfd, monkeypatch):
+    out = tmp_path / "out"
+    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
+            "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    record = sorted((out / "trials").glob("*.json"))[0]
+    kept, names = record.read_bytes(), sorted(p.name for p in (out / "trials").iterdir())
+    read_bounded = files.read_bounded
+
+    def denied(path, *args, **kwargs):
+        if str(path) == str(record):
+            raise PermissionError(13, "Permission denied", str(path))
+        return read_bounded(path, *args, **kwargs)
+    monkeypatch.setattr(files, "read_bounded", denied)
+    for command in ([*argv, "--dry-run"], argv,
+                    ["plot", "table1", str(out), "--out", str(tmp_path / "t.png")]):
+        code, text = run_cli(command, capfd)
+        assert code == 1, text
+        assert_one_line_error(code, text, f"{record}: cannot be read (Permission denied)",
+                              "neither set aside nor run again")
+        assert "corrupt" not in text
+    assert sorted(p.name for p in (out / "trials").iterdir()) == names  # nothing set aside
+    assert record.read_bytes() == kept

@@ -322,3 +322,26 @@ def test_a_list_setting_one_key_twice_is_refused_by_the_api_too(tmp_path):
         run_sweep(spec, run_trial_from_spec, tmp_path / "out", progress=False)
     assert not (tmp_path / "out").exists()
     assert tegrasp_drake.LoadScenario(overrides=[settings[0]] * 2).grasp.grip_force == 30.0
+
+
+# Rule: a spec file this user cannot read (another user's: simulated, as root ignores modes) is
+# a file that cannot be read, exit 1 as an unreadable --scenario is; exit 2 is for a spec
+# refused for what it holds.
+@pytest.mark.parametrize("command", [
+    ["sweep", "--spec"], ["transfer"], ["sensitivity"]], ids=["sweep", "transfer", "sensitivity"])
+def test_a_spec_that_cannot_be_read_exits_1(command, tmp_path, capfd, monkeypatch):
+    from tegrasp_drake.rig import typed_yaml
+    spec = tmp_path / "sp.yaml"
+    spec.write_text("objects: [box]\n")
+    read_bounded = typed_yaml.read_bounded
+
+    def denied(path, *args, **kwargs):
+        if str(path) == str(spec):
+            raise PermissionError(13, "Permission denied", str(path))
+        return read_bounded(path, *args, **kwargs)
+    monkeypatch.setattr(typed_yaml, "read_bounded", denied)
+    code, text = run_cli([*command, str(spec), "--out", str(tmp_path / "o"), "--workers", "1"],
+                         capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, f"{spec}: cannot read the", "Permission denied")
+    assert not (tmp_path / "o").exists()

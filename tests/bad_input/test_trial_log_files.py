@@ -465,3 +465,23 @@ def test_a_trial_log_the_reader_refuses_is_never_saved(spoil, expected, tmp_path
     with pytest.raises(TrialLogError, match=f"TrialLog.save: '{path}' not written: .*{expected}"):
         spoiled.save(path)
     assert not path.exists() and list(tmp_path.iterdir()) == []
+
+
+# Rule: a trial log this user cannot open (another user's: simulated, as root ignores modes)
+# is said to be one that cannot be read, never a truncated or corrupt one to run again.
+def test_a_trial_log_that_cannot_be_read_is_not_called_corrupt(tmp_path, capfd, monkeypatch):
+    import os
+    from tegrasp_drake.scenario import trial_log_file
+    path = tmp_path / "trial.npz"
+    trial_log(path)
+    real_open = os.open
+
+    def denied(name, *args, **kwargs):
+        if str(name) == str(path):
+            raise PermissionError(13, "Permission denied", str(name))
+        return real_open(name, *args, **kwargs)
+    monkeypatch.setattr(trial_log_file.os, "open", denied)
+    code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "x.png")], capfd)
+    assert_one_line_error(code, text, f"trial log '{path}' cannot be read (Permission denied)")
+    assert "corrupt" not in text and "run the trial again" not in text
+    assert not (tmp_path / "x.png").exists()
