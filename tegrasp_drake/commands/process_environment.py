@@ -11,7 +11,9 @@ user's environment does not surface as an internal error or as lines of another 
   ~/.config, and its cache under $XDG_CACHE_HOME or ~/.cache) cannot be written, e.g. HOME=/proc:
   matplotlib would make a temporary one itself but says so in two lines of warnings first.
   An MPLCONFIGDIR that names no folder this user can write (a file) gets the same, with one
-  `tegrasp: warning:` line. The folder is removed when the process ends."""
+  `tegrasp: warning:` line. The folder is removed when the process ends. Nothing is made
+  to find out: a home folder (or XDG folder) that does not exist counts as not writable and
+  stays absent; under an existing one, matplotlib makes its own folders, as without tegrasp."""
 
 import atexit
 import codecs
@@ -52,24 +54,44 @@ def run_in_utf8_mode() -> None:
                      "LANG=C.UTF-8 (and unset LC_ALL, or set it to C.UTF-8) or PYTHONUTF8=1")
 
 
-def _writable_folder(folder: pathlib.Path) -> bool:
-    """Whether `folder` is, or can be made as, a folder this user writes (as matplotlib asks)."""
-    try:
-        folder.mkdir(parents=True, exist_ok=True)
+def _writable_folder(folder: pathlib.Path, base: pathlib.Path | None = None) -> bool:
+    """Whether `folder` is a folder this user writes, or one matplotlib could make as one
+    (its nearest existing ancestor a folder this user can make folders in), as matplotlib
+    asks; nothing is left made here. With `base` (the home folder, or the XDG folder that holds `folder`), a `base`
+    that does not exist counts as not writable: a missing home folder is never made, and
+    matplotlib's folders then go to the temporary folder. Under an existing `base`,
+    matplotlib makes its own folder (e.g. ~/.config/matplotlib) as it would without tegrasp."""
+    if base is not None and not base.is_dir():
+        return False
+    path = folder
+    while not os.path.lexists(path) and path != path.parent:
+        path = path.parent
+    if not (path.is_dir() and os.access(path, os.W_OK | os.X_OK)):
+        return False
+    if path == folder:
+        return True
+    try:  # access() says yes to root where no folder can be made (/proc): try, leave nothing
+        os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=path))
     except OSError:
         return False
-    return folder.is_dir() and os.access(folder, os.W_OK)
+    return True
 
 
-def _home_folder(variable: str, fallback: str) -> pathlib.Path:
+def _home_folder(variable: str, fallback: str) -> tuple[pathlib.Path, pathlib.Path]:
+    """The folder an XDG `variable` names, or the home folder's `fallback` under it, with
+    the folder that must already exist for it to be used (the named one, or the home)."""
     chosen = os.environ.get(variable, "").strip()
-    return pathlib.Path(chosen) if chosen else pathlib.Path.home() / fallback
+    if chosen:
+        return pathlib.Path(chosen), pathlib.Path(chosen)
+    home = pathlib.Path.home()
+    return home / fallback, home
 
 
 def _matplotlib_folders_usable() -> bool:
-    """Whether matplotlib's own folders can be written: MPLCONFIGDIR when it is set (a
-    warning in the package's one-line form when it cannot), else its configuration and cache
-    folders under the home folder."""
+    """Whether matplotlib's own folders can be written, checked without making any:
+    MPLCONFIGDIR when it is set (a warning in the package's one-line form when it cannot),
+    else its configuration and cache folders under the home folder (or the XDG folders),
+    which must exist."""
     chosen = os.environ.get("MPLCONFIGDIR")
     if chosen:
         if _writable_folder(pathlib.Path(chosen)):
@@ -78,11 +100,11 @@ def _matplotlib_folders_usable() -> bool:
               "write; matplotlib's settings and cache go to a temporary folder", file=sys.stderr)
         return False
     try:
-        return all(_writable_folder(_home_folder(variable, fallback) / "matplotlib")
-                   for variable, fallback in (("XDG_CONFIG_HOME", ".config"),
-                                              ("XDG_CACHE_HOME", ".cache")))
+        folders = [_home_folder(variable, fallback) for variable, fallback in
+                   (("XDG_CONFIG_HOME", ".config"), ("XDG_CACHE_HOME", ".cache"))]
     except RuntimeError:  # no home folder at all
         return False
+    return all(_writable_folder(folder / "matplotlib", base) for folder, base in folders)
 
 
 def private_matplotlib_config() -> None:

@@ -5,10 +5,11 @@ DIR/points.json, DIR/events, DIR/cells, DIR/sensitivity.md and the tornado chart
 command resumes. Exit codes as `tegrasp sweep`'s."""
 
 import argparse
+import contextlib
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          OptionError, check_runner_arguments,
+                                          OptionError, check_runner_arguments, output_folder_held,
                                           refusals_said, resolve_trial_function,
                                           scheduler_connection)
 from tegrasp_drake.rig.integer_text import integer_option
@@ -48,6 +49,11 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    with contextlib.ExitStack() as held:  # --out, from the first read to the last report
+        return _run(args, held)
+
+
+def _run(args, held: contextlib.ExitStack) -> int:
     from tegrasp_drake.sensitivity.report import write_sensitivity_report
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
@@ -63,6 +69,7 @@ def run(args) -> int:
                 except ConfigError as error:  # its count
                     raise OptionError(str(error)) from None
             trial_function = resolve_trial_function(args.trial_function)
+            held.enter_context(output_folder_held(args, "sensitivity"))
             summaries = run_sensitivity(spec, points, trial_function, args.out,
                                         workers=args.workers, scheduler=scheduler,
                                         progress=not args.no_progress and progress_wanted(args),

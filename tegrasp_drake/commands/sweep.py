@@ -449,6 +449,34 @@ def check_runner_arguments(args, command: str) -> None:
 
 
 @contextlib.contextmanager
+def output_folder_held(args, command: str):
+    """Holds --out for the rest of the command (rig.files.held_folder, the lock every run
+    into a folder takes; the runs' own holds of it share this one), from before its runs
+    read the folder to after the last report is written, so a second run into it is refused
+    at once while this one reads, runs or writes its reports, and this one is refused while
+    another does: OptionError (one line, exit 1), in the words a trial's refusal uses. --out
+    is made if missing; the folders that made are removed again, if still empty, when the
+    block fails. The folder is asked again, under the hold, whether it holds another
+    command's run (other_run_problem): one may have ended there since the first check."""
+    from pathlib import Path
+    from tegrasp_drake.rig.files import (FolderHeldError, absent_folders, held_folder,
+                                         made_folders_removed_if_empty)
+    out = Path(args.out)
+    made = absent_folders(out)
+    with made_folders_removed_if_empty(made), contextlib.ExitStack() as stack:
+        out.mkdir(parents=True, exist_ok=True)
+        try:
+            stack.enter_context(held_folder(out, shared=True))
+        except FolderHeldError:
+            raise OptionError(f"--out {args.out}: {FOLDER_HELD}; wait for it to end, or give "
+                              "another --out") from None
+        problem = other_run_problem(args.out, command)
+        if problem:
+            raise OptionError(problem)
+        yield
+
+
+@contextlib.contextmanager
 def scheduler_connection(args, command: str):
     """The command's one connection to --scheduler (None without it), which its sweeps run
     on: entered, once the Dask extra is found, it says on stderr (unless --quiet) what it
@@ -515,6 +543,11 @@ def check_benchmark_options(args) -> None:
 
 
 def run(args) -> int:
+    with contextlib.ExitStack() as held:  # --out, from the sweep's first read to its reports
+        return _run(args, held)
+
+
+def _run(args, held: contextlib.ExitStack) -> int:
     with refusals_said() as refused:
         check_benchmark_options(args)  # before the scheduler is asked whether it answers
         check_runner_arguments(args, "sweep")
@@ -558,6 +591,7 @@ def run(args) -> int:
                           file=sys.stderr)
                     return 1
                 return 0 if identical and not any(run.errors for run in runs) else 1
+            held.enter_context(output_folder_held(args, "sweep"))
             summary = run_sweep(spec, trial_function, args.out, workers=args.workers,
                                 scheduler=scheduler, progress=progress,
                                 confirmed_trials=args.confirm_trials)

@@ -3,11 +3,13 @@
 the heat map; the same command resumes. Exit codes as `tegrasp sweep`'s."""
 
 import argparse
+import contextlib
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          check_runner_arguments, refusals_said,
-                                          resolve_trial_function, scheduler_connection)
+                                          check_runner_arguments, output_folder_held,
+                                          refusals_said, resolve_trial_function,
+                                          scheduler_connection)
 from tegrasp_drake.sweep.runner import summary_text
 
 DEFAULT_OUT = "results/transfer"
@@ -40,6 +42,11 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    with contextlib.ExitStack() as held:  # --out, from the first read to the last report
+        return _run(args, held)
+
+
+def _run(args, held: contextlib.ExitStack) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
     from tegrasp_drake.transfer.report import write_transfer_reports
     with refusals_said() as refused:
@@ -47,6 +54,7 @@ def run(args) -> int:
         with scheduler_connection(args, "transfer") as scheduler:
             spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
             trial_function = resolve_trial_function(args.trial_function)
+            held.enter_context(output_folder_held(args, "transfer"))
             summaries = run_transfer(spec, trial_function, args.out, workers=args.workers,
                                      scheduler=scheduler,
                                      progress=not args.no_progress and progress_wanted(args),

@@ -174,8 +174,36 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
             with relations_checked():  # its own public calls: not again
                 relations(f"{name}: {argument}")  # its ranges too, as the builders' rechecked
     for argument, value in bound.arguments.items():  # every type is right: the values
-        for constraint in _constraints(hints.get(argument))[1]:
+        constraints = _constraints(hints.get(argument))[1]
+        if not any(isinstance(c, Folder) for c in constraints):  # a Folder says it itself
+            _check_path_given(name, argument, value, hints.get(argument),
+                              signature.parameters[argument].default)
+        for constraint in constraints:
             _check_constraint(name, argument, value, constraint)
+
+
+def _takes_path(hint) -> bool:
+    """Whether `hint` (PathLike, PathLike | None, Annotated[...]) takes a file or folder name."""
+    hint = _constraints(hint)[0]
+    if hint is os.PathLike:
+        return True
+    return any(_takes_path(member) for member in typing.get_args(hint)
+               if typing.get_origin(hint) in (typing.Union, types.UnionType))
+
+
+def _check_path_given(function: str, name: str, value, hint, default) -> None:
+    """UserPathError when a file name argument (a PathLike one) is the empty text: never read
+    as "not given" (a default file) nor as the current folder; the command line's words for
+    an empty file option (`--scenario '' is empty; give ...`), "a folder" for an argument
+    named *_dir or *folder. Text of spaces is a name, as
+    on the command line: its reader says it does not exist."""
+    if not (isinstance(value, str) and value == "" and _takes_path(hint)):
+        return
+    from tegrasp_drake.rig.files import UserPathError
+    what = "a folder" if name.endswith(("_dir", "folder")) else "a file"
+    default_words = ", or None for its default" if default is None else ""
+    raise UserPathError(f"{function}: argument '{name}': '' is empty; give {what}"
+                        f"{default_words}")
 
 
 def _mismatch(where: str, value, hint) -> tuple:

@@ -10,6 +10,7 @@ import os
 import pathlib
 import subprocess
 import sys
+import tempfile
 import types
 
 import pytest
@@ -136,6 +137,30 @@ def test_an_mplconfigdir_that_is_a_file_is_one_warning_line(tmp_path, monkeypatc
     lines = capsys.readouterr().err.splitlines()
     assert len(lines) == 1 and lines[0].startswith("tegrasp: warning: MPLCONFIGDIR="), lines
     assert str(a_file) in lines[0] and os.path.isdir(os.environ["MPLCONFIGDIR"])
+
+
+# Rule: a home folder that does not exist is not made to find out whether matplotlib can
+# write under it: matplotlib's folders go to the temporary folder, and the home stays absent.
+def test_a_missing_home_folder_is_not_made(tmp_path, monkeypatch):
+    from tegrasp_drake.commands.process_environment import private_matplotlib_config
+    home = tmp_path / "nohome"
+    monkeypatch.setenv("HOME", str(home))
+    for variable in ("XDG_CONFIG_HOME", "XDG_CACHE_HOME", "MPLCONFIGDIR"):
+        monkeypatch.delenv(variable, raising=False)
+    private_matplotlib_config()
+    assert not os.path.lexists(home)
+    assert os.environ["MPLCONFIGDIR"].startswith(tempfile.gettempdir())
+
+
+# Rule: under an existing home folder nothing is made by the check either (matplotlib makes
+# its own folder there when it needs it), and matplotlib's own folders are kept.
+def test_an_existing_home_folder_is_used_and_left_as_it_was(tmp_path, monkeypatch):
+    from tegrasp_drake.commands.process_environment import private_matplotlib_config
+    monkeypatch.setenv("HOME", str(tmp_path))
+    for variable in ("XDG_CONFIG_HOME", "XDG_CACHE_HOME", "MPLCONFIGDIR"):
+        monkeypatch.delenv(variable, raising=False)
+    private_matplotlib_config()
+    assert "MPLCONFIGDIR" not in os.environ and os.listdir(tmp_path) == []
 
 
 # Rule: a log record stderr refuses (-v on a full disk) is dropped, never Python logging's

@@ -6,6 +6,7 @@ results refuse fields no run makes; the API's ranges are the command line's."""
 import dataclasses
 import enum
 import inspect
+import os
 import typing
 
 import numpy as np
@@ -583,3 +584,54 @@ def test_a_config_fields_wrong_type_is_one_error_type(build):
     with pytest.raises(ConfigError) as refused:
         build()
     assert isinstance(refused.value, TypeError), refused.value
+
+
+# Rule: an empty file name given to the public API is refused naming the argument, in the
+# words of the command line's refusal of an empty file option ("is empty; give ..."), never
+# read as "not given" (LoadScenario's built-in file) nor as the current folder; checked at
+# the API boundary, before the function runs.
+_EMPTY_FILE_NAME_CALLS = {
+    ("LoadScenario", "filename"): lambda: T.LoadScenario(filename=""),
+    ("LoadHardwareConfig", "filename"): lambda: T.LoadHardwareConfig(""),
+    ("LoadSweepSpec", "path"): lambda: T.LoadSweepSpec(""),
+    ("load_memorized_events", "events_dir"): lambda: T.load_memorized_events("", "box"),
+    ("load_trial_log", "path"): lambda: T.load_trial_log(""),
+    ("run_on_hardware", "log_path"): lambda: T.run_on_hardware(LoadScenario(), log_path=""),
+}
+
+
+@pytest.mark.parametrize("function, argument", sorted(_EMPTY_FILE_NAME_CALLS))
+def test_an_empty_file_name_is_refused_naming_its_argument(tmp_path, monkeypatch, function,
+                                                           argument):
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(OSError) as refused:
+        _EMPTY_FILE_NAME_CALLS[function, argument]()
+    text = str(refused.value)
+    what = "a folder" if argument.endswith("_dir") else "a file"
+    assert text.startswith(f"{function}: argument '{argument}': '' is empty; give {what}"), text
+    assert "\n" not in text
+    assert list(tmp_path.iterdir()) == []
+
+
+def _takes_a_path(hint) -> bool:
+    if typing.get_origin(hint) is typing.Annotated:
+        return _takes_a_path(typing.get_args(hint)[0])
+    return hint is os.PathLike or any(_takes_a_path(h) for h in typing.get_args(hint))
+
+
+def test_every_public_file_name_argument_is_checked_for_the_empty_name():
+    """Every public function's PathLike argument is a Folder (Folder.problem refuses an
+    empty name) or one of the file names tested above."""
+    unchecked = []
+    for name in tegrasp_drake.__all__:
+        function = getattr(tegrasp_drake, name)
+        if inspect.isclass(function) or not callable(function):
+            continue
+        hints = typing.get_type_hints(inspect.unwrap(function), include_extras=True)
+        for argument, hint in hints.items():
+            folder = typing.get_origin(hint) is typing.Annotated and any(
+                isinstance(c, Folder) for c in typing.get_args(hint)[1:])
+            if argument != "return" and _takes_a_path(hint) and not folder \
+                    and (name, argument) not in _EMPTY_FILE_NAME_CALLS:
+                unchecked.append((name, argument))
+    assert unchecked == []

@@ -234,6 +234,94 @@ def test_dry_run_prints_its_plan_for_a_folder_another_run_is_writing_and_says_so
     assert list(out.iterdir()) == []
 
 
+def _files(folder):
+    """Every file under `folder`: {relative path: (bytes, mtime_ns)}."""
+    return {str(path.relative_to(folder)): (path.read_bytes(), path.stat().st_mtime_ns)
+            for path in sorted(folder.rglob("*")) if path.is_file()}
+
+
+def test_a_held_out_folder_refuses_a_resume_with_nothing_left_to_run(tmp_path, capsys):
+    """The hold covers the whole command, its reports too: a resume of a finished sweep
+    (nothing left to run, only reports to write) into a folder another run holds is
+    refused at once in one line, and no report is rewritten."""
+    from tegrasp_drake.rig.files import held_folder
+    spec = tmp_path / "one.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0]]\n")
+    out = tmp_path / "out"
+    arguments = ["sweep", "--spec", str(spec), "--out", str(out), "--workers", "1", *FAKE]
+    assert cli.main(arguments) == 0, capsys.readouterr()
+    before = _files(out)
+    assert "table1.md" in before
+    capsys.readouterr()
+    with held_folder(out):  # another run of it, writing its reports
+        code = cli.main(arguments)
+    said = capsys.readouterr()
+    assert code == cli.EXIT_ERROR, said
+    assert said.out == ""
+    lines = said.err.strip().splitlines()
+    assert len(lines) == 1 and "another run is writing there now" in lines[0], lines
+    assert str(out) in lines[0]
+    assert _files(out) == before
+
+
+def _still_held(folder) -> bool:
+    """Whether another hold has `folder` now (a second hold of it is refused)."""
+    from tegrasp_drake.rig.files import FolderHeldError, held_folder
+    try:
+        with held_folder(folder):
+            return False
+    except FolderHeldError:
+        return True
+
+
+@pytest.mark.parametrize("command_name", ["sweep", "transfer", "sensitivity"])
+def test_a_command_holds_its_out_folder_while_it_writes_its_reports(tmp_path, capsys,
+                                                                    monkeypatch,
+                                                                    command_name):
+    """The runs (stubbed here: nothing is simulated) and then the reports, all under one
+    hold of --out: a second run is refused while the reports are written, not only while
+    trials run."""
+    import tegrasp_drake.sensitivity.report as sensitivity_report
+    import tegrasp_drake.sensitivity.study as study
+    import tegrasp_drake.transfer.matrix as matrix
+    import tegrasp_drake.transfer.report as transfer_report
+    from tegrasp_drake.sweep.runner import SweepSummary
+    out = tmp_path / "out"
+    held_while_reporting = []
+
+    def reports(*_, **__):
+        held_while_reporting.append(_still_held(out))
+        return []
+    summary = SweepSummary(out_dir=out, total=1, skipped=1, ran=0, errors=(), unfinished=(),
+                           corrupt=(), backend="processes:1", wall_time_s=0.0,
+                           trial_ids=("t",), other_records=0, unwritten_log=None)
+    monkeypatch.setattr(command, "run_sweep", lambda *_, **__: summary)
+    monkeypatch.setattr(command, "write_reports", reports)
+    monkeypatch.setattr(matrix, "run_transfer", lambda *_, **__: {"cell": summary})
+    monkeypatch.setattr(transfer_report, "write_transfer_reports", reports)
+    monkeypatch.setattr(study, "run_sensitivity", lambda *_, **__: {"point": summary})
+    monkeypatch.setattr(sensitivity_report, "write_sensitivity_report", reports)
+    sweep = ("sweep: {controllers: [memorized], attempts: 1, objects: [box], "
+             "grid: [[0.0, 0.0]]}\n")
+    spec = tmp_path / "spec.yaml"
+    if command_name == "sweep":
+        spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                        "grid: [[0.0, 0.0]]\n")
+        arguments = ["sweep", "--spec", str(spec)]
+    elif command_name == "transfer":
+        spec.write_text("worlds: {a: {scenario: memorizing_world}}\ncells: [[a, a]]\n"
+                        + sweep)
+        arguments = ["transfer", str(spec)]
+    else:
+        spec.write_text("parameters: [tactile.pad_modulus_pa]\n" + sweep)
+        arguments = ["sensitivity", str(spec)]
+    code = cli.main([*arguments, "--out", str(out), "--workers", "1", *FAKE])
+    assert code == 0, capsys.readouterr()
+    assert held_while_reporting == [True]
+    assert not _still_held(out)  # and given back at the end
+
+
 @pytest.mark.parametrize("attempts, code, stream, words", [
     # One object, marker, attempt and controller read "1 object", not "1 objects".
     (1, 0, "out", "1 trial (1 object x 1 marker x 1 attempt x 1 controller)"),
