@@ -120,7 +120,8 @@ def test_a_figure_on_a_full_disk_is_one_line_and_the_old_one_kept(tmp_path):
 # --- 4. refused before the work --------------------------------------------------------------
 
 def test_an_output_folder_that_cannot_be_made_is_refused_up_front():
-    assert "not writable" in files.folder_problem("/proc/tegrasp-test/events")
+    assert "/proc cannot be written in: making a folder there failed" in files.folder_problem(
+        "/proc/tegrasp-test/events")
 
 
 def test_html_naming_the_run_folder_is_refused_up_front(tmp_path, capfd):
