@@ -81,7 +81,9 @@ def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
         raise ConfigError(f"{path}: cannot read {what}: it is not UTF-8 text (byte "
                           f"{e.start}); give a YAML file") from None
     except OSError as e:
-        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}") from None
+        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}; ask its "
+                                  "owner to make it readable, or give a file you can read"
+                                  ) from None
     return text
 
 

@@ -343,5 +343,6 @@ def test_a_spec_that_cannot_be_read_exits_1(command, tmp_path, capfd, monkeypatc
     code, text = run_cli([*command, str(spec), "--out", str(tmp_path / "o"), "--workers", "1"],
                          capfd)
     assert code == 1, text
-    assert_one_line_error(code, text, f"{spec}: cannot read the", "Permission denied")
+    assert_one_line_error(code, text, f"{spec}: cannot read the", "Permission denied; ask its "
+                          "owner to make it readable, or give a file you can read")
     assert not (tmp_path / "o").exists()
