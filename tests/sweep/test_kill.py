@@ -60,36 +60,6 @@ def test_sigkill_then_resume_gives_the_records_of_an_uninterrupted_run(tmp_path)
     assert (killed_dir / "table1.csv").read_bytes() == (clean_dir / "table1.csv").read_bytes()
 
 
-# Rule: SIGTERM (what `kill` and batch systems send) and SIGHUP (a closed terminal) stop a
-# sweep as Ctrl-C does: the records written stay, no staging or temporary file is left, and
-# the same command resumes to exactly the records of an uninterrupted run.
-@pytest.mark.parametrize("signal_number", [signal.SIGTERM, signal.SIGHUP])
-def test_sigterm_or_sighup_then_resume_gives_the_records_of_an_uninterrupted_run(
-        tmp_path, signal_number):
-    stopped_dir, clean_dir = tmp_path / "stopped", tmp_path / "clean"
-    count, returncode = killed_runs.kill_after_some_records(
-        sweep_command(stopped_dir), lambda: record_files(stopped_dir), 4, TIMEOUT_S,
-        signal_number)
-    assert returncode == 128 + signal_number
-    assert 4 <= count < TRIALS_TOTAL, "the signal must land in the middle of the sweep"
-    assert not [p for p in stopped_dir.rglob(".*")], list(stopped_dir.rglob(".*"))
-    stopped = {p.name: p.read_bytes() for p in record_files(stopped_dir)}
-
-    resumed = run_to_end(stopped_dir)
-    finished_before = int(resumed.stdout.split(", ")[1].split()[0])
-    assert finished_before == len(stopped)
-    assert f"{TRIALS_TOTAL - finished_before} run now" in resumed.stdout
-    for name, content in stopped.items():  # not run again
-        assert (stopped_dir / "trials" / name).read_bytes() == content, name
-
-    run_to_end(clean_dir)
-    resumed_records, clean = record_files(stopped_dir), record_files(clean_dir)
-    assert [p.name for p in resumed_records] == [p.name for p in clean]
-    for a, b in zip(resumed_records, clean):
-        assert a.read_bytes() == b.read_bytes(), a.name
-    assert not [p for p in stopped_dir.rglob(".*")]
-
-
 def session_processes(session_id: int) -> set[int]:
     """The pids of the live processes of a session (the sweep started in its own)."""
     pids = set()
