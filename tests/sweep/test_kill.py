@@ -8,7 +8,6 @@ import sys
 import time
 from pathlib import Path
 
-import pytest
 
 from tests import killed_runs
 from tests.killed_runs import environment
