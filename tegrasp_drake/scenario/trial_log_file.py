@@ -123,17 +123,25 @@ def trial_log_checksum(meta: dict, arrays: dict) -> str:
 
 def checksum_problem(meta: dict, arrays: dict) -> str | None:
     """What is wrong with a trial log's checksum (meta 'checksum', trial_log_checksum of the
-    rest), in words that follow the log's name, else None: none stored (a log written by hand
-    or before logs carried one), or one its contents do not give (edited after writing)."""
+    rest), in words that follow the log's name, else None: one its contents do not give
+    (edited after writing). A log that holds none is unchecksummed_log_refusal's."""
     stored = meta.get(CHECKSUM_FIELD)
-    if stored is None:
-        return (f"holds no checksum (meta '{CHECKSUM_FIELD}'), which every trial log this "
-                "package writes carries, so an edited log cannot be told from a trial's")
     actual = trial_log_checksum(meta, arrays)
     if not isinstance(stored, str) or stored != actual:
         return (f"was changed after it was written (its stored checksum "
                 f"{shorten(repr(stored), 80)} is not its contents' SHA-256 {actual})")
     return None
+
+
+def unchecksummed_log_refusal(path) -> str:
+    """The refusal of the trial log at `path` that holds no checksum (meta 'checksum'): one an
+    earlier version of the package wrote, before trial logs carried one. A run that reuses a
+    stored log (a campaign's LOGS_DIR, a sweep's --logs read by its reports) would meet it
+    again on every run, so the words say to delete it, which makes that run write it anew."""
+    return (f"trial log '{path}' was written by an earlier version of the package, without "
+            f"a checksum (meta '{CHECKSUM_FIELD}'), so an edited log cannot be told from a "
+            f"trial's; delete '{path}' (a run that reuses its logs then writes it anew) or run "
+            "the trial again to replace it")
 
 
 class LogNotWritten(Exception):
@@ -237,6 +245,8 @@ def written_trial_log(path: pathlib.Path, *,
                             f"{shorten(repr(version))}, this package reads "
                             f"{FORMAT_VERSION}; run the trial again with this package to "
                             "remake it")
+    if meta.get(CHECKSUM_FIELD) is None:
+        raise TrialLogError(unchecksummed_log_refusal(path))
     problem = checksum_problem(meta, arrays)  # before what an edit would make of its contents
     if problem:
         raise TrialLogError(f"trial log '{path}' {problem}; run the trial again to remake it")
