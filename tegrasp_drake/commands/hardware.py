@@ -112,10 +112,10 @@ def duration_problem(value: float) -> str | None:
     return None
 
 
-def _events_folder(events, args, scenario) -> str:
-    """The folder the events were read from, for the run's log ("" without events)."""
+def _events_folder(events, args, scenario) -> str | None:
+    """The folder the events were read from, for the run's log (None without events)."""
     if not events:
-        return ""
+        return None
     from tegrasp_drake.events.events_folder import events_folder_of
     from tegrasp_drake.rig import paths
     return str(events_folder_of(paths.events_search_path(args.events), scenario.object.name))
