@@ -404,8 +404,8 @@ def refusals_said():
     """The refusals of a command that runs sweeps (sweep, transfer, sensitivity), each said
     in one line on stderr, `tegrasp: error: ...` (ERROR_LEAD), with its exit code set on the
     Refusal yielded: 1 for bad input (OptionError), an output folder that cannot take a
-    record (RecordPlaceError), a spec file that cannot be read (UnreadableFileError: no
-    permission, an I/O error) and a scheduler lost mid-run
+    record (RecordPlaceError), a spec file that cannot be read (UnreadableFileError: missing,
+    a folder or device, no permission, an I/O error) and a scheduler lost mid-run
     (SchedulerLostError: the unfinished trials run again with the same command), 2 for a
     spec refused (ConfigError, SweepError). Memorized events that cannot be read
     (MemorizedEventError, e.g. a damaged DIR/events) end the command as bad input,

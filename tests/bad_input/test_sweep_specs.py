@@ -324,6 +324,27 @@ def test_a_list_setting_one_key_twice_is_refused_by_the_api_too(tmp_path):
     assert tegrasp_drake.LoadScenario(overrides=[settings[0]] * 2).grasp.grip_force == 30.0
 
 
+# Rule: a configuration file that is not there to read (missing, a folder) is a file that
+# cannot be read, exit 1 for a sweep, transfer or sensitivity spec as for a scenario file or a
+# hardware config (docs/user-guide.md, "Exit codes": exit 2 is a spec refused for what it
+# holds).
+@pytest.mark.parametrize("command, what", [
+    (["sweep", "--spec"], "the sweep spec"), (["transfer"], "the transfer spec"),
+    (["sensitivity"], "the sensitivity spec"), (["trial", "--scenario"], "the scenario file"),
+    (["hardware", "--config"], "the hardware config"),
+], ids=["sweep", "transfer", "sensitivity", "scenario", "hardware"])
+@pytest.mark.parametrize("given, words", [
+    ("missing.yaml", "it does not exist"), ("folder", "it is a folder; give a file"),
+], ids=["missing", "folder"])
+def test_a_configuration_file_that_is_not_there_exits_1(command, what, given, words, tmp_path,
+                                                       capfd):
+    (tmp_path / "folder").mkdir()
+    path = tmp_path / given
+    code, text = run_cli([*command, str(path)], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, f"{path}: cannot read {what}: {words}")
+
+
 # Rule: a spec file this user cannot read (another user's: simulated, as root ignores modes) is
 # a file that cannot be read, exit 1 as an unreadable --scenario is; exit 2 is for a spec
 # refused for what it holds.
