@@ -203,6 +203,24 @@ def write_error_remedy(error: OSError) -> str:
     return "give a folder you can write"
 
 
+def read_error_remedy(error: OSError) -> str:
+    """What to do about a read that failed with `error`, in the words a reader's error line
+    ends with: its owner's permission for a file this user may not read (EACCES, EPERM); else
+    (EIO: a failing disk, a network file system gone) the system could not read it, which
+    says nothing of its content: never a damaged file, never one to remake."""
+    if error.errno in (errno.EACCES, errno.EPERM):
+        return "ask its owner to make it readable, or give a file you can read"
+    return ("the system could not read it, which says nothing of its content; read it again "
+            "once the disk or file system answers, or give a copy")
+
+
+def is_read_failure(error: BaseException) -> bool:
+    """Whether `error` is the operating system's refusal to read a file (an OSError carrying
+    an errno: EIO, EACCES, ...), not a reader's finding about what the file holds (zipfile's,
+    numpy's and the package's own OSErrors carry none)."""
+    return isinstance(error, OSError) and error.errno is not None
+
+
 @contextlib.contextmanager
 def temporary_sibling(path, *, start: bytes):
     """A temporary file name beside `path` for a writer that wants a name (np.savez,

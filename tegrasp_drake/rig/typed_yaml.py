@@ -31,7 +31,8 @@ from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.number_text import float_beyond_problem, number_text
 from tegrasp_drake.rig.ranges import holds_settings, number_problem, python_scalar, range_of
 from tegrasp_drake.rig.unset_fields import empty_meaning
-from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
+from tegrasp_drake.rig.files import (InputTooLargeError, NotAFileError, error_line, read_bounded,
+                                     read_error_remedy)
 
 
 class ConfigError(ValueError):
@@ -83,9 +84,8 @@ def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
         raise ConfigError(f"{path}: cannot read {what}: it is not UTF-8 text (byte "
                           f"{e.start}); give a YAML file") from None
     except OSError as e:
-        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}; ask its "
-                                  "owner to make it readable, or give a file you can read"
-                                  ) from None
+        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}; "
+                                  f"{read_error_remedy(e)}") from None
     return text
 
 

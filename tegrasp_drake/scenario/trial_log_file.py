@@ -24,6 +24,7 @@ from collections.abc import Callable
 import numpy as np
 
 from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, file_problem, load_json,
+                                     is_read_failure, read_error_remedy,
                                      one_line, temporary_sibling)
 from tegrasp_drake.scenario.logged_channels import logged_channels_problem
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
@@ -204,9 +205,17 @@ def written_trial_log(path: pathlib.Path, *,
     check_trial_log_file(path)
     try:  # a log this user cannot open (another user's) is not a damaged one: no remake
         os.close(os.open(path, os.O_RDONLY | os.O_NONBLOCK))
+        return _checked_trial_log(path, any_version)
     except OSError as e:
-        raise TrialLogError(f"trial log '{path}' cannot be read ({e.strerror or e}); ask its "
-                            "owner to make it readable, or give a log you can read") from None
+        if not is_read_failure(e):
+            raise
+        raise TrialLogError(f"trial log '{path}' cannot be read ({e.strerror or e}); "
+                            f"{read_error_remedy(e)}") from None
+
+
+def _checked_trial_log(path: pathlib.Path, any_version: bool) -> tuple[dict, dict]:
+    """written_trial_log's checks of a log it could open; the system's error reading it
+    (files.is_read_failure) raised as that OSError."""
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",),
@@ -227,6 +236,8 @@ def written_trial_log(path: pathlib.Path, *,
                             "a trial log") from None
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error,
             UnicodeDecodeError) as e:
+        if is_read_failure(e):
+            raise
         raise TrialLogError(f"trial log '{path}' is truncated or corrupt ({type(e).__name__}: "
                             f"{e}); run the trial again to remake it") from None
     if not isinstance(meta, dict):
