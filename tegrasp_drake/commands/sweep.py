@@ -21,7 +21,8 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.files import FOLDER_HELD, error_line, folder_problem
+from tegrasp_drake.rig.files import (FOLDER_HELD, error_line, folder_problem,
+                                     unprobed_folder_checks)
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
@@ -544,6 +545,8 @@ def check_benchmark_options(args) -> None:
 
 def run(args) -> int:
     with contextlib.ExitStack() as held:  # --out, from the sweep's first read to its reports
+        if args.dry_run:  # writes nothing, its checks of --out, --logs and trials/ included
+            held.enter_context(unprobed_folder_checks())
         return _run(args, held)
 
 

@@ -5,6 +5,7 @@ FIFOs and devices, SIGTERM and SIGHUP ending a run as Ctrl-C does,
 one-line UserPathError, strict JSON, and the one reader of a JSON file (read_json_file)."""
 
 import contextlib
+import contextvars
 import errno
 import fcntl
 import json
@@ -314,10 +315,29 @@ def installed_package_dir() -> pathlib.Path | None:
     return package
 
 
+# Whether folder_problem may prove a folder writable by making (and removing at once) an entry
+# in it; unprobed_folder_checks turns it off for a block.
+_WRITE_PROBES = contextvars.ContextVar("tegrasp_write_probes", default=True)
+
+
+@contextlib.contextmanager
+def unprobed_folder_checks():
+    """folder_problem without its probe entry for the block: a dry run leaves no trace, not
+    even a folder's changed modification time or an entry another process could see for a
+    moment. It asks access(2) (os.access) alone, which reads the mode bits, ACLs and a
+    read-only mount; what only a write shows (a full disk, a server that refuses) is left to
+    the real run's own check."""
+    token = _WRITE_PROBES.set(False)
+    try:
+        yield
+    finally:
+        _WRITE_PROBES.reset(token)
+
+
 def folder_problem(path) -> str | None:
     """Why `path` cannot be, or be made as, a folder this user writes in (None if it can),
-    proven by making an entry in its nearest existing part (permission bits do not tell);
-    _place_problem first."""
+    proven by making an entry in its nearest existing part (permission bits do not tell;
+    within unprobed_folder_checks, os.access alone); _place_problem first."""
     problem = _place_problem(path)
     if problem:
         return problem
@@ -330,6 +350,8 @@ def folder_problem(path) -> str | None:
         return f"{place} is not a folder"
     if not os.access(place, os.W_OK | os.X_OK):
         return f"{place} is not writable"
+    if not _WRITE_PROBES.get():
+        return None
     try:
         os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
     except OSError as e:

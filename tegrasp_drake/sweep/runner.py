@@ -48,7 +48,7 @@ from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, ch
                                       expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.files import (FolderHeldError, UserPathError, folder_problem, held_folder,
-                                     non_folder_on_path)
+                                     non_folder_on_path, unprobed_folder_checks)
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig.echo import shorten
@@ -336,7 +336,8 @@ def check_sweep_folder(spec: SweepSpec, trial_function: Callable, out_dir
         _check_records_fit(trials, trial_function, loaded.records, out_dir)
     pending = [trial for trial in trials
                if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
-    _check_records_writable(out_dir, pending, set_aside=loaded.corrupt)
+    with unprobed_folder_checks():  # nothing made, not even a probe of trials/
+        _check_records_writable(out_dir, pending, set_aside=loaded.corrupt)
     return len(pending), dict(loaded.corrupt), in_use
 
 

@@ -5,6 +5,7 @@ records would refuse is an error, not a record; records and reports of a folder 
 records are refused in one line."""
 
 import json
+import os
 
 import pytest
 
@@ -105,6 +106,31 @@ def test_a_trials_folder_that_cannot_be_written_is_refused_before_any_trial(
     assert "free some space" not in real[1]
     assert dry[1] == real[1]
     assert not records[0].exists() and records[1].read_bytes() == kept
+
+
+# Rule: a dry run leaves no trace: its checks that --out, its trials/ and --logs can be
+# written ask os.access (files.unprobed_folder_checks), making no probe entry there, so no
+# folder's modification time changes, and no missing folder is made.
+def test_a_dry_run_makes_no_probe_in_the_folders_it_checks(tmp_path, capfd, monkeypatch):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0]]\n")
+    out, logs = tmp_path / "out", tmp_path / "logs"
+    (out / "trials").mkdir(parents=True)
+    logs.mkdir()
+    monkeypatch.setattr(files.tempfile, "mkdtemp",
+                        lambda *a, **k: pytest.fail(f"a probe was made in {k.get('dir')}"))
+    folders = (tmp_path, out, out / "trials", logs)
+    before = {folder: os.stat(folder).st_mtime_ns for folder in folders}
+    new = tmp_path / "new"
+    for given_out, given_logs in ((out, logs), (new / "out", new / "logs")):
+        code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(given_out), "--logs",
+                              str(given_logs), "--trial-function",
+                              "tests.fake_trials:fake_trial", "--dry-run"], capfd)
+        assert code == 0, text
+    assert {folder: os.stat(folder).st_mtime_ns for folder in folders} == before
+    assert not (tmp_path / "new").exists()
+    assert list((out / "trials").iterdir()) == [] and list(logs.iterdir()) == []
 
 
 def test_a_write_refused_for_permission_is_not_told_to_free_space(tmp_path, monkeypatch):
