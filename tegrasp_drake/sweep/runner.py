@@ -15,6 +15,7 @@ import multiprocessing
 import os
 import pickle
 import signal
+import struct
 import tempfile
 import threading
 import time
@@ -701,9 +702,19 @@ def connect_scheduler(scheduler: str,
         raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {error}")
     if error is not None:
         raise SweepError(f"what answers at {scheduler} is not a Dask scheduler "
-                         f"({type(error).__name__}: {shorten(str(error))}): give the address "
-                         "`dask scheduler` prints")
+                         f"({_handshake_problem(error)}): give the address `dask scheduler` "
+                         "prints")
     return made["client"]
+
+
+def _handshake_problem(error: Exception) -> str:
+    """What went wrong in a Dask handshake, in words that follow "is not a Dask scheduler":
+    bytes that do not decode as Dask's frames (a length of 2^62 bytes that numpy cannot
+    allocate, a shape or a value out of range) are no Dask reply, whatever distributed's
+    decoder raised for them; any other error is named with its type."""
+    if isinstance(error, (MemoryError, OverflowError, ValueError, struct.error)):
+        return "its reply is not Dask's protocol"
+    return f"{type(error).__name__}: {shorten(str(error))}"
 
 
 # The loggers distributed configures (dask's `logging` config) and tornado's under them.
