@@ -14,8 +14,9 @@ from tegrasp_drake.rig import files
 from tegrasp_drake.sweep.records import _checksum, load_records, record_path
 from tegrasp_drake.sweep.runner import run_sweep, run_trial_safely
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
-from tests.bad_input.probes import (assert_one_line_error, events_copy_with_index, forge_record,
-                                    run_cli, sweep_with_events)
+from tests.bad_input.probes import (assert_one_line_error, deny_reading, events_copy_with_index,
+                                    finished_fake_sweep, forge_record, run_cli,
+                                    sweep_with_events)
 from tests.fake_trials import fake_trial, whole_result
 
 
@@ -841,17 +842,8 @@ def test_a_sweep_into_a_folder_of_another_study_is_refused_before_it_runs(tmp_pa
 # a folder without records.
 def test_a_trials_folder_that_cannot_be_read_is_not_called_empty(tmp_path, capfd, monkeypatch):
     out = tmp_path / "out"
-    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
-            "--out", str(out), "--workers", "1", "--no-progress",
-            "--trial-function", "tests.fake_trials:fake_trial"]
-    assert run_cli(argv, capfd)[0] == 0
-    scandir = files.os.scandir
-
-    def denied(path="."):
-        if str(path) == str(out / "trials"):
-            raise PermissionError(13, "Permission denied", str(path))
-        return scandir(path)
-    monkeypatch.setattr(files.os, "scandir", denied)
+    finished_fake_sweep(out, capfd)
+    deny_reading(monkeypatch, files.os, "scandir", out / "trials")
     with pytest.raises(files.UserPathError, match="trials cannot be read .Permission denied"):
         load_records(out)
     code, text = run_cli(["plot", "table1", str(out), "--out", str(tmp_path / "t.png")], capfd)
@@ -864,19 +856,10 @@ def test_a_trials_folder_that_cannot_be_read_is_not_called_empty(tmp_path, capfd
 # is neither set aside nor run again.
 def test_a_record_that_cannot_be_read_is_not_set_aside_or_rerun(tmp_path, capfd, monkeypatch):
     out = tmp_path / "out"
-    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
-            "--out", str(out), "--workers", "1", "--no-progress",
-            "--trial-function", "tests.fake_trials:fake_trial"]
-    assert run_cli(argv, capfd)[0] == 0
+    argv = finished_fake_sweep(out, capfd)
     record = sorted((out / "trials").glob("*.json"))[0]
     kept, names = record.read_bytes(), sorted(p.name for p in (out / "trials").iterdir())
-    read_bounded = files.read_bounded
-
-    def denied(path, *args, **kwargs):
-        if str(path) == str(record):
-            raise PermissionError(13, "Permission denied", str(path))
-        return read_bounded(path, *args, **kwargs)
-    monkeypatch.setattr(files, "read_bounded", denied)
+    deny_reading(monkeypatch, files, "read_bounded", record)
     for command in ([*argv, "--dry-run"], argv,
                     ["plot", "table1", str(out), "--out", str(tmp_path / "t.png")]):
         code, text = run_cli(command, capfd)

@@ -9,7 +9,8 @@ import tegrasp_drake
 from tegrasp_drake.rig.ranges import field_range
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, validate_spec
-from tests.bad_input.probes import SEED, assert_one_line_error, one_line_of, refusal, run_cli
+from tests.bad_input.probes import (SEED, assert_one_line_error, deny_reading, one_line_of,
+                                    refusal, run_cli)
 
 
 # --- sweep specs ------------------------------------------------------------------------
@@ -354,13 +355,7 @@ def test_a_spec_that_cannot_be_read_exits_1(command, tmp_path, capfd, monkeypatc
     from tegrasp_drake.rig import typed_yaml
     spec = tmp_path / "sp.yaml"
     spec.write_text("objects: [box]\n")
-    read_bounded = typed_yaml.read_bounded
-
-    def denied(path, *args, **kwargs):
-        if str(path) == str(spec):
-            raise PermissionError(13, "Permission denied", str(path))
-        return read_bounded(path, *args, **kwargs)
-    monkeypatch.setattr(typed_yaml, "read_bounded", denied)
+    deny_reading(monkeypatch, typed_yaml, "read_bounded", spec)
     code, text = run_cli([*command, str(spec), "--out", str(tmp_path / "o"), "--workers", "1"],
                          capfd)
     assert code == 1, text
