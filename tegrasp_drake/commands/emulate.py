@@ -15,6 +15,7 @@ import pathlib
 import re
 import signal
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
 from tegrasp_drake.hardware.robotiq.modbus_client import quiet_modbus_library
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
@@ -135,11 +136,11 @@ def _parse_fault(text) -> FaultInjection:
     which is no fault: 0x1..0xF, or decimal 1..15), SECONDS in FAULT_DELAY."""
     code, at = _fault_parts(text)
     if not 0 < code <= GFLT_MAX:
-        raise SystemExit(f"tegrasp: error: --inject-fault {shown(text)}: the 2F-85's "
+        raise SystemExit(f"{ERROR_LEAD}--inject-fault {shown(text)}: the 2F-85's "
                          f"fault register gFLT holds 4 bits, 0x0 being no fault; give a CODE "
                          f"from 0x1 to {GFLT_MAX:#x} (decimal 1 to {GFLT_MAX})")
     if not (math.isfinite(at) and FAULT_DELAY.contains(at)):
-        raise SystemExit(f"tegrasp: error: --inject-fault {shown(text)}: SECONDS "
+        raise SystemExit(f"{ERROR_LEAD}--inject-fault {shown(text)}: SECONDS "
                          f"{FAULT_DELAY.words(at)}, got {shorten(text.split('@')[1])}")
     return FaultInjection(code, at)
 
@@ -149,21 +150,21 @@ def _check_config_target(path) -> None:
     `tegrasp emulate` did not write, or cannot be written."""
     path = pathlib.Path(path)
     if path.is_dir():
-        raise SystemExit(f"tegrasp: error: --write-config {path} is a folder; give a file "
+        raise SystemExit(f"{ERROR_LEAD}--write-config {path} is a folder; give a file "
                          "name, e.g. hw.yaml")
     problem = output_file_problem(path)  # a missing folder is made, as plot --out's is
     if problem:
-        raise SystemExit(f"tegrasp: error: --write-config {path} {problem}")
+        raise SystemExit(f"{ERROR_LEAD}--write-config {path} {problem}")
     if path.exists():
         try:  # the first line only: a huge file is no config emulate wrote, and not read
             with open(path, "rb") as existing:
                 head = existing.read(len(WRITTEN_BY_EMULATE.encode()) + 1)
             first = head.decode("utf-8", errors="replace").split("\n", 1)[0]
         except OSError as e:
-            raise SystemExit(f"tegrasp: error: --write-config {path}: cannot read it "
+            raise SystemExit(f"{ERROR_LEAD}--write-config {path}: cannot read it "
                              f"({e.strerror or e}); give another file name") from None
         if first != WRITTEN_BY_EMULATE:
-            raise SystemExit(f"tegrasp: error: --write-config {path} exists and was not "
+            raise SystemExit(f"{ERROR_LEAD}--write-config {path} exists and was not "
                              "written by `tegrasp emulate` (its first line is not the one "
                              "emulate writes); give another file name, or remove it yourself")
 
@@ -172,7 +173,7 @@ def _refuse_unused_options(args, devices) -> None:
     """Exits naming the first option given that none of `devices` uses (DEVICE_OPTIONS)."""
     for dest, (option, device) in DEVICE_OPTIONS.items():
         if getattr(args, dest) is not None and device not in devices:
-            raise SystemExit(f"tegrasp: error: {option} applies to `emulate {device}` and "
+            raise SystemExit(f"{ERROR_LEAD}{option} applies to `emulate {device}` and "
                              f"`emulate all`; `emulate {args.device}` does not use it, so "
                              f"leave {option} out")
 
@@ -188,7 +189,7 @@ def run(args) -> int:
     if args.write_config:
         _check_config_target(args.write_config)
     if args.device in ("myrio", "all") and not args.trial:
-        raise SystemExit("tegrasp: error: emulate myrio/all needs --trial NPZ (a trial log; "
+        raise SystemExit(f"{ERROR_LEAD}emulate myrio/all needs --trial NPZ (a trial log; "
                          "`tegrasp demo --out DIR` writes DIR/trial.npz)")
     devices = EMULATED_DEVICES if args.device == "all" else (args.device,)
     inject_fault = (_parse_fault(args.inject_fault)
@@ -199,7 +200,7 @@ def run(args) -> int:
             # checked before the process is raised; a trial log, never a bare recording
             load_tactile_recording(args.trial, bare=False)
         except TactileRecordingError as e:
-            raise SystemExit(f"tegrasp: error: {e}") from None
+            raise SystemExit(f"{ERROR_LEAD}{e}") from None
     sync = args.sync or ("follow" if args.device == "all" else "none")
     follow_gripper = (args.follow_gripper if args.follow_gripper is not None
                       else args.device == "all")
@@ -207,7 +208,7 @@ def run(args) -> int:
             follow_gripper and "myrio" in devices):  # they open --lcm-url
         problem = shared_lcm_url_problem(args.lcm_url)  # the check `tegrasp hardware` makes
         if problem:
-            raise SystemExit(f"tegrasp: error: {lcm_url_origin(args.lcm_url, '--lcm-url')} "
+            raise SystemExit(f"{ERROR_LEAD}{lcm_url_origin(args.lcm_url, '--lcm-url')} "
                              f"{shown(args.lcm_url)} {problem}")
     # Every argument is checked above; only now is the whole process raised.
     logger.info(f"emulate: arguments checked; starting {', '.join(devices)} (LCM "
@@ -236,7 +237,7 @@ def run(args) -> int:
         out("ready")
         emulators.run_until_stopped()
     except TactileRecordingError as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{e}") from None
     finally:
         emulators.close()
         logger.info("emulate: the devices stopped")

@@ -12,6 +12,7 @@ import pathlib
 import logging
 import sys
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
                                                write_result)
@@ -111,10 +112,10 @@ def duration_problem(value: float) -> str | None:
     return None
 
 
-def _events_folder(events, args, scenario) -> str:
-    """The folder the events were read from, for the run's log ("" without events)."""
+def _events_folder(events, args, scenario) -> str | None:
+    """The folder the events were read from, for the run's log (None without events)."""
     if not events:
-        return ""
+        return None
     from tegrasp_drake.events.events_folder import events_folder_of
     from tegrasp_drake.rig import paths
     return str(events_folder_of(paths.events_search_path(args.events), scenario.object.name))
@@ -227,24 +228,24 @@ def run(args) -> int:
     from tegrasp_drake.hardware.config import HardwareStationConfig
     problem = args.duration is not None and duration_problem(args.duration)
     if problem:  # a number outside its range: bad input, not a command line that does not parse
-        raise SystemExit(f"tegrasp: error: {problem}")
+        raise SystemExit(f"{ERROR_LEAD}{problem}")
     scenario = scenario_from_arguments(args)
     if args.config:
         try:
             config = LoadHardwareConfig(args.config, args.config_overrides)
         except ConfigError as e:
-            raise SystemExit(f"tegrasp: error: {e}") from None
+            raise SystemExit(f"{ERROR_LEAD}{e}") from None
     elif isinstance(scenario.station, HardwareStationConfig):
         config = scenario.station
     else:
-        raise SystemExit("tegrasp: error: give --config FILE, or a scenario whose `station` "
+        raise SystemExit(f"{ERROR_LEAD}give --config FILE, or a scenario whose `station` "
                          "is `!HardwareStationConfig {...}`")
     from tegrasp_drake.hardware.config import lcm_url_origin, shared_lcm_url_problem
     problem = shared_lcm_url_problem(config.arm.lcm_url)  # the arm's driver is another process
     if problem:
         where = args.config or "the scenario's station"
         origin = lcm_url_origin(config.arm.lcm_url, "field 'arm.lcm_url'")
-        raise SystemExit(f"tegrasp: error: {shorten(where)}: {origin} {problem}, got "
+        raise SystemExit(f"{ERROR_LEAD}{shorten(where)}: {origin} {problem}, got "
                          f"{shown(config.arm.lcm_url)}")
     source = args.config or "the scenario's station"
     logger.info(f"hardware: devices checked ({source}): arm "
@@ -265,7 +266,7 @@ def run(args) -> int:
         problem = output_file_problem(taken)
         if problem:
             where = "" if taken == pathlib.Path(log) else f": {shorten(str(taken))}"
-            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}{where} {problem}")
+            raise SystemExit(f"{ERROR_LEAD}--log {shorten(str(log))}{where} {problem}")
     # The folders --log needs are made for the run and, if it ends refused or failed before
     # it wrote anything, removed again (a refused run leaves nothing).
     from tegrasp_drake.rig.files import (absent_folders, made_folders_removed_if_empty,
@@ -289,11 +290,11 @@ def _run_in_log_folder(args, scenario, config, events, corrective, log, result_p
         try:
             stack.enter_context(held_file(log))
         except FileHeldError:
-            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}: another tegrasp "
+            raise SystemExit(f"{ERROR_LEAD}--log {shorten(str(log))}: another tegrasp "
                              "hardware run is writing it now; give another --log, or wait "
                              "for that run to end") from None
         except OSError as e:
-            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}: cannot make its "
+            raise SystemExit(f"{ERROR_LEAD}--log {shorten(str(log))}: cannot make its "
                              f"lock file beside it: {e.strerror or e}") from None
         return _run_holding_log(args, scenario, config, events, corrective, log,
                                 result_path)
@@ -365,16 +366,16 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
         problem = earlier_run_file_problem(taken, is_log=taken == pathlib.Path(log))
         if problem:
             where = "" if taken == pathlib.Path(log) else f": {shorten(str(taken))}"
-            raise SystemExit(f"tegrasp: error: --log {shorten(str(log))}{where} {problem}")
+            raise SystemExit(f"{ERROR_LEAD}--log {shorten(str(log))}{where} {problem}")
     for taken in earlier:
         if not args.overwrite:
-            raise SystemExit(f"tegrasp: error: {shorten(str(taken))} already holds a run's "
+            raise SystemExit(f"{ERROR_LEAD}{shorten(str(taken))} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
     problem = free_space_problem(  # before the devices come up
         pathlib.Path(log).parent, LOG_MIN_FREE_BYTES, "its log (ten seconds of the bus)")
     if problem:
-        raise SystemExit(f"tegrasp: error: --log {shorten(str(log))} {problem}")
+        raise SystemExit(f"{ERROR_LEAD}--log {shorten(str(log))} {problem}")
     # The run logs to a hidden file beside --log; the earlier log and result stay whole
     # until this run's replace them together at the end (commit_hardware_run), and a run
     # that fails keeps them (its own go beside them, failed_run_path). A killed run's
@@ -393,7 +394,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
         # a device's port is a field of the hardware config: the line names where it is
         config_file = args.config or "the scenario's station"
         where = f"{config_file}: " if isinstance(e, DeviceAbsentError) else ""
-        print(f"tegrasp: error: {error_line(f'{where}{e}')}", file=sys.stderr, flush=True)
+        print(f"{ERROR_LEAD}{error_line(f'{where}{e}')}", file=sys.stderr, flush=True)
         return 1
     except BaseException:
         kept, replaced = keep_incomplete_log(staged, log)
@@ -417,7 +418,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
                                  result=str(target_result)))
     except OSError as e:
         kept, replaced = keep_incomplete_log(staged, log)
-        raise SystemExit(f"tegrasp: error: cannot write the run's result to "
+        raise SystemExit(f"{ERROR_LEAD}cannot write the run's result to "
                          f"{shorten(str(target_result))}: "
                          f"{e.strerror or e}"
                          + (f"; its log is in {incomplete_log_words(kept, replaced, log)}"
@@ -441,7 +442,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
           f"{' (the log stopped)' if result.log_fault else ''}; {logged_words}, "
           f"result {result_path}", flush=True)
     if result.log_fault:
-        print(f"tegrasp: error: {error_line(str(result.log_fault))}; the run was stopped",
+        print(f"{ERROR_LEAD}{error_line(str(result.log_fault))}; the run was stopped",
               file=sys.stderr,
               flush=True)
     if keep_earlier:

@@ -16,6 +16,7 @@ import logging
 import os
 import pathlib
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS, figure_replace_problem
 from tegrasp_drake.rig.files import output_file_problem
@@ -72,20 +73,20 @@ def output_path(args) -> pathlib.Path:
         out = pathlib.Path("out") / f"{DEFAULT_STEMS[args.what]}.{args.format or 'png'}"
         problem = figure_replace_problem(out)
         if problem:
-            raise SystemExit(f"tegrasp: error: {out} {problem}")
+            raise SystemExit(f"{ERROR_LEAD}{out} {problem}")
         return out
     out = pathlib.Path(args.out)
     suffix = out.suffix.lstrip(".").lower()
     if suffix not in FIGURE_FORMATS:
-        raise SystemExit(f"tegrasp: error: --out {out}: the file name must end in one of "
+        raise SystemExit(f"{ERROR_LEAD}--out {out}: the file name must end in one of "
                          f"{', '.join('.' + f for f in FIGURE_FORMATS)}")
     if args.format is not None and args.format != suffix:
-        raise SystemExit(f"tegrasp: error: --out {out} is a .{suffix} file but --format is "
+        raise SystemExit(f"{ERROR_LEAD}--out {out} is a .{suffix} file but --format is "
                          f"{args.format}; give one of them")
     problem = output_file_problem(out) or figure_replace_problem(
         out, overwrite=getattr(args, "overwrite", False))
     if problem:
-        raise SystemExit(f"tegrasp: error: --out {out} {problem}")
+        raise SystemExit(f"{ERROR_LEAD}--out {out} {problem}")
     return out
 
 
@@ -108,7 +109,7 @@ def _plot_events(args, out) -> str:
                 logger.debug(f"plot events: {len(loaded)} memorized events from {folder}")
                 events.update(loaded)
     except MemorizedEventError as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{e}") from None
     return str(plot_memorized_events(events, out))
 
 
@@ -124,7 +125,7 @@ def _plot_trial(args, out) -> str:
     try:
         log = load_trial_log(args.source)
     except TrialLogError as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{e}") from None
     logger.debug(f"plot {args.what}: {args.source}: {log.t_sa.size} slow-adapting and "
                  f"{log.t_ra.size} fast-adapting tactile samples, "
                  f"{len(log.meta.get('transitions', ()))} transitions")
@@ -139,7 +140,7 @@ def _plot_trial(args, out) -> str:
     try:
         return plot_avoid_reaction(log, out, hit_rule=logged_hit_rule(log))
     except NoAvoidError as e:
-        raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{args.source}: {e}") from None
 
 
 def _plot_sweep(args, out) -> str:
@@ -147,22 +148,22 @@ def _plot_sweep(args, out) -> str:
     from tegrasp_drake.sweep import load_records
     _require_source(args, "a sweep's results folder (e.g. analysis/results_seed0)")
     if not is_folder(args.source):  # UserPathError when it cannot be read
-        raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
+        raise SystemExit(f"{ERROR_LEAD}no trial records under {args.source}/trials "
                          f"({args.source} is not a folder; give the --out folder of "
                          "`tegrasp sweep`)")
     trials = pathlib.Path(args.source) / "trials"
     if not is_folder(trials) and os.path.lexists(trials):
-        raise SystemExit(f"tegrasp: error: {trials} is not a folder of trial records (a "
+        raise SystemExit(f"{ERROR_LEAD}{trials} is not a folder of trial records (a "
                          "sweep writes its records there); give the --out folder of "
                          "`tegrasp sweep`")
     loaded = load_records(args.source)
     problem = loaded.table_problem(args.source)
     if problem:
-        raise SystemExit(f"tegrasp: error: {problem}")
+        raise SystemExit(f"{ERROR_LEAD}{problem}")
     records = list(loaded.records.values())
     logger.debug(f"plot {args.what}: {len(records)} trial records from {args.source}")
     if not records:
-        raise SystemExit(f"tegrasp: error: no trial records under {args.source}/trials "
+        raise SystemExit(f"{ERROR_LEAD}no trial records under {args.source}/trials "
                          "(run `tegrasp sweep --out FOLDER` first)")
     from tegrasp_drake.figures.latency import plot_latency_distributions
     from tegrasp_drake.figures.sweep import write_success_maps
@@ -174,7 +175,7 @@ def _plot_sweep(args, out) -> str:
             return plot_latency_distributions(records, out)
         return str(write_success_maps(records, out.parent, out.name))
     except ValueError as e:
-        raise SystemExit(f"tegrasp: error: {args.source}: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{args.source}: {e}") from None
 
 
 def run(args) -> int:
@@ -191,7 +192,7 @@ def run(args) -> int:
         try:
             written = _plot_trial(args, out)
         except ConfigError as e:  # the log's scenario, damaged or edited
-            raise SystemExit(f"tegrasp: error: trial log '{args.source}': {e}") from None
+            raise SystemExit(f"{ERROR_LEAD}trial log '{args.source}': {e}") from None
     else:
         written = _plot_sweep(args, out)
     print(written)

@@ -24,6 +24,8 @@ import pathlib
 import shutil
 import sys
 import tempfile
+
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.rig.echo import shown
 
 
@@ -49,7 +51,7 @@ def run_in_utf8_mode() -> None:
             os.execv(sys.executable, [sys.executable, "-X", "utf8", *original[1:]])
         except OSError:
             pass
-    raise SystemExit(f"tegrasp: error: the locale's text encoding is "
+    raise SystemExit(f"{ERROR_LEAD}the locale's text encoding is "
                      f"{locale.getpreferredencoding(False)}, and Drake needs UTF-8; set "
                      "LANG=C.UTF-8 (and unset LC_ALL, or set it to C.UTF-8) or PYTHONUTF8=1")
 
@@ -130,6 +132,6 @@ def check_matplotlib_backend() -> None:
     try:
         importlib.import_module("matplotlib")  # it reads MPLBACKEND as it is imported
     except ValueError:
-        raise SystemExit(f"tegrasp: error: MPLBACKEND={shown(backend)} is not a matplotlib "
+        raise SystemExit(f"{ERROR_LEAD}MPLBACKEND={shown(backend)} is not a matplotlib "
                          "backend; unset it (tegrasp draws its figures into files, with Agg) "
                          "or give one, e.g. MPLBACKEND=agg") from None

@@ -11,6 +11,7 @@ import argparse
 import contextlib
 import pathlib
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.integer_text import integer_option
@@ -79,14 +80,14 @@ def _scenarios_to_record(args) -> list:
     record that scenario's object. --object is refused with --scenario/--scenario-name, and
     so is a --set that changes which object an --object records."""
     if args.object and (args.scenario or args.scenario_name):
-        raise SystemExit("tegrasp: error: --object records a built-in object from its own "
+        raise SystemExit(f"{ERROR_LEAD}--object records a built-in object from its own "
                          "scenario; --scenario/--scenario-name record a scenario's object: "
                          "give one or the other")
     if args.object and args.overrides:
         chosen = _builtin_scenarios(args.object, args.overrides)
         for name, scenario in chosen:
             if scenario.object.name != name:
-                raise SystemExit(f"tegrasp: error: --object {name} with --set "
+                raise SystemExit(f"{ERROR_LEAD}--object {name} with --set "
                                  f"{' --set '.join(args.overrides)} would record the object "
                                  f"'{scenario.object.name}'; drop --object to record it")
         return chosen
@@ -119,7 +120,7 @@ def _ensemble_runs(args, to_record) -> int:
         scenarios_object = not args.object and len(to_record) == 1
         return TEMPLATE_RUNS if scenarios_object and to_record[0][1] is not None else 0
     if not 0 <= args.ensemble_runs <= MAX_ENSEMBLE_RUNS:
-        raise SystemExit(f"tegrasp: error: --ensemble-runs {args.ensemble_runs}: give 0 "
+        raise SystemExit(f"{ERROR_LEAD}--ensemble-runs {args.ensemble_runs}: give 0 "
                          f"(none) to {MAX_ENSEMBLE_RUNS} ideal grasps (each about 20 s)")
     return args.ensemble_runs
 
@@ -128,17 +129,17 @@ def run(args) -> int:
     out, named = ((args.events, f"--events {args.events}") if args.events
                   else paths.user_events_setting())
     if paths.is_installed_package_data(out):
-        raise SystemExit(f"tegrasp: error: {out} holds the installed package's events, which "
+        raise SystemExit(f"{ERROR_LEAD}{out} holds the installed package's events, which "
                          "`pip install` replaces; record into your own folder (--events DIR "
                          f"or {paths.EVENTS_ENV}; default {paths.user_events_dir()})")
     problem = folder_problem(out)
     if problem:
-        raise SystemExit(f"tegrasp: error: {named}: {problem}; give a folder you can write"
+        raise SystemExit(f"{ERROR_LEAD}{named}: {problem}; give a folder you can write"
                          f"{'' if args.events else ' (or --events DIR)'}")
     from tegrasp_drake.commands.run_folder import other_run_problem
     problem = other_run_problem(out, "record-events", named=named)
     if problem:  # the events would mix with a trial's, sweep's or study's files
-        raise SystemExit(f"tegrasp: error: {problem}")
+        raise SystemExit(f"{ERROR_LEAD}{problem}")
     to_record = _scenarios_to_record(args)
     runs = _ensemble_runs(args, to_record)
     _check_destination(out, named, [name for name, _ in to_record], runs)
@@ -158,10 +159,10 @@ def _held_events_folder(out, named: str):
         try:
             stack.enter_context(held_events_folder(out))
         except EventsFolderHeldError:
-            raise SystemExit(f"tegrasp: error: {named}: another run is recording events "
+            raise SystemExit(f"{ERROR_LEAD}{named}: another run is recording events "
                              "there now; wait for it to end, or give another folder") from None
         except OSError as e:
-            raise SystemExit(f"tegrasp: error: {named}: cannot open it: {e.strerror or e}; "
+            raise SystemExit(f"{ERROR_LEAD}{named}: cannot open it: {e.strerror or e}; "
                              "give a folder you can write") from None
         yield
 
@@ -195,9 +196,9 @@ def _record(out, to_record, runs: int, args) -> int:
                     written += save_memorized_events(pathlib.Path(out) / ENSEMBLE_FOLDER,
                                                      ensemble.values())
         except (RecordEventsError, EventsDestinationError, UnreadableEventsError) as e:
-            raise SystemExit(f"tegrasp: error: {e}") from None
+            raise SystemExit(f"{ERROR_LEAD}{e}") from None
         except OSError as e:
-            raise SystemExit(f"tegrasp: error: cannot write the events to {out}: "
+            raise SystemExit(f"{ERROR_LEAD}cannot write the events to {out}: "
                              f"{e.strerror or e}; nothing of '{object_name}' was "
                              "replaced") from None
         made = ", ".join(events) + (f"; ensemble of {runs} runs" if ensemble else "")
@@ -223,14 +224,14 @@ def _check_destination(out, named: str, object_names, runs: int) -> None:
         for folder in folders:
             check_events_destination(folder, object_names)
     except EventsDestinationError as e:
-        raise SystemExit(f"tegrasp: error: {named}: {e}; nothing was recorded") from None
+        raise SystemExit(f"{ERROR_LEAD}{named}: {e}; nothing was recorded") from None
     ensemble = ", twice with an ensemble" if runs else ""
     problem = free_space_problem(
         out, EVENTS_BYTES_PER_OBJECT * len(object_names) * (2 if runs else 1),
         f"the events of {count_text(len(object_names), 'object')} (at most "
         f"{EVENTS_BYTES_PER_OBJECT / 1e6:g} MB an object{ensemble})")
     if problem:
-        raise SystemExit(f"tegrasp: error: {named}: {problem}; nothing was recorded")
+        raise SystemExit(f"{ERROR_LEAD}{named}: {problem}; nothing was recorded")
 
 
 def _builtin_scenario(object_name: str):

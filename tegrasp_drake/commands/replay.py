@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.events_option import check_events_folder
 
 
@@ -51,7 +52,7 @@ def run(args) -> int:
     try:
         replay = replay_run_log(args.log, object_name=args.object, events_dir=args.events)
     except (RunLogError, MemorizedEventError, ValueError) as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{e}") from None
     summary = replay.summary()
     damaged = replay.log.damage_text()
     if damaged:

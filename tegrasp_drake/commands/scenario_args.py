@@ -4,6 +4,7 @@ import logging
 import pathlib
 import sys
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.scenario.scenario import DEFAULT_SCENARIO, LoadScenario
 from tegrasp_drake.commands.events_option import check_events_folder
@@ -32,7 +33,7 @@ def scenario_from_arguments(args, *, simulates: str = ""):
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
             args.scenario in (read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
                               or {}):
-        raise SystemExit(f"tegrasp: error: --scenario takes a file of scenarios; "
+        raise SystemExit(f"{ERROR_LEAD}--scenario takes a file of scenarios; "
                          f"'{args.scenario}' is a built-in scenario: give --scenario-name "
                          f"{args.scenario}")
     controller = getattr(args, "controller", None)
@@ -46,11 +47,11 @@ def scenario_from_arguments(args, *, simulates: str = ""):
                                 controller=controller, on_ignored=say_ignored,
                                 allow_long=getattr(args, "allow_long", False))
     except ConfigError as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{e}") from None
     if simulates and isinstance(scenario.station, HardwareStationConfig):
         where = f"{args.scenario or 'scenario'} [{args.scenario_name}]"
         if simulates == "trial":
-            raise SystemExit(f"tegrasp: error: {where}: its station is !HardwareStationConfig "
+            raise SystemExit(f"{ERROR_LEAD}{where}: its station is !HardwareStationConfig "
                              "(the real arm, gripper and pads); this command simulates: run "
                              "it on the devices with `tegrasp hardware`, or give a scenario "
                              "without that station")
@@ -79,13 +80,13 @@ def controller_events(scenario, events_dir):
     try:
         events = load_controller_events(scenario, events_dir)
     except MemorizedEventError as e:
-        raise SystemExit(f"tegrasp: error: the {scenario.controller.name} controller needs "
+        raise SystemExit(f"{ERROR_LEAD}the {scenario.controller.name} controller needs "
                          f"the memorized "
                          f"events of '{scenario.object.name}': {e}") from None
     try:
         warning = another_worlds_events(scenario, events)
     except ConfigError as e:
-        raise SystemExit(f"tegrasp: error: {e}") from None
+        raise SystemExit(f"{ERROR_LEAD}{e}") from None
     if warning:
         logging.getLogger(__name__).warning(warning)
     return events
@@ -101,5 +102,5 @@ def corrective_events(scenario, events_dir):
     try:
         return load_corrective_events(scenario, events_dir)
     except MemorizedEventError as e:
-        raise SystemExit("tegrasp: error: controller.memorized_corrective.events needs the "
+        raise SystemExit(f"{ERROR_LEAD}controller.memorized_corrective.events needs the "
                          f"corrective events of '{scenario.object.name}': {e}") from None

@@ -21,7 +21,8 @@ from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.reports import write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
-from tegrasp_drake.rig.files import FOLDER_HELD, error_line, folder_problem
+from tegrasp_drake.rig.files import (FOLDER_HELD, error_line, folder_problem,
+                                     unprobed_folder_checks)
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.sweep.runner import (
@@ -404,8 +405,8 @@ def refusals_said():
     """The refusals of a command that runs sweeps (sweep, transfer, sensitivity), each said
     in one line on stderr, `tegrasp: error: ...` (ERROR_LEAD), with its exit code set on the
     Refusal yielded: 1 for bad input (OptionError), an output folder that cannot take a
-    record (RecordPlaceError), a spec file that cannot be read (UnreadableFileError: no
-    permission, an I/O error) and a scheduler lost mid-run
+    record (RecordPlaceError), a spec file that cannot be read (UnreadableFileError: missing,
+    a folder or device, no permission, an I/O error) and a scheduler lost mid-run
     (SchedulerLostError: the unfinished trials run again with the same command), 2 for a
     spec refused (ConfigError, SweepError). Memorized events that cannot be read
     (MemorizedEventError, e.g. a damaged DIR/events) end the command as bad input,
@@ -544,6 +545,8 @@ def check_benchmark_options(args) -> None:
 
 def run(args) -> int:
     with contextlib.ExitStack() as held:  # --out, from the sweep's first read to its reports
+        if args.dry_run:  # writes nothing, its checks of --out, --logs and trials/ included
+            held.enter_context(unprobed_folder_checks())
         return _run(args, held)
 
 

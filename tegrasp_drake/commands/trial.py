@@ -8,6 +8,7 @@ import contextlib
 import json
 import sys
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (REPLAY_KEY, RunFolderError, commit_run,
                                                new_run_folder, own_file_problem, staged_run)
@@ -112,17 +113,17 @@ def run(args) -> int:
     html = check_html_path(args)
     problem = html and own_file_problem(html, args.out or args.default_out)
     if problem:
-        raise SystemExit(f"tegrasp: error: --html {html} {problem}")
+        raise SystemExit(f"{ERROR_LEAD}--html {html} {problem}")
     with contextlib.ExitStack() as stack:  # the folder made for a run that fails is removed
         try:
             out = stack.enter_context(new_run_folder(
                 args.out, default=args.default_out, replace_default=args.replace_default_out,
                 overwrite=args.overwrite))
         except RunFolderError as e:
-            raise SystemExit(f"tegrasp: error: {e}") from None
+            raise SystemExit(f"{ERROR_LEAD}{e}") from None
         problem = trial_output_problem(out, scenario)
         if problem:  # before the simulation, not after it (the folder made is removed)
-            raise SystemExit(f"tegrasp: error: --out {out} {problem}")
+            raise SystemExit(f"{ERROR_LEAD}--out {out} {problem}")
         from tegrasp_drake.figures.trial_figures import write_trial_figures
         from tegrasp_drake.runs.trial import SimulationFailedError, run_trial
         meshcat = start_viewer(args)
@@ -136,7 +137,7 @@ def run(args) -> int:
                     try:  # its own error: a failed replay names --html and keeps the run
                         replay_html = str(write_replay_html(meshcat, html))
                     except OSError as e:
-                        html_error = (f"tegrasp: error: --html {html}: cannot write it "
+                        html_error = (f"{ERROR_LEAD}--html {html}: cannot write it "
                                       f"({e.strerror or e}); the run is kept in {out}")
                 try:
                     result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
@@ -148,7 +149,7 @@ def run(args) -> int:
                     raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
                                          "an earlier run there is kept whole") from None
         except (RunFolderError, SimulationFailedError) as e:
-            raise SystemExit(f"tegrasp: error: {e}") from None
+            raise SystemExit(f"{ERROR_LEAD}{e}") from None
     if args.json:
         print(json.dumps(result, sort_keys=True), flush=True)
     else:

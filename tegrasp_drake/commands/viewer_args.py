@@ -5,6 +5,7 @@ the run's recording as one standalone HTML file (Meshcat.StaticHtml: no server, 
 import pathlib
 import sys
 
+from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.rig.files import output_file_problem, write_atomically
 
 HTML_START = b"<!DOCTYPE html>"  # how Meshcat.StaticHtml's page starts (an HTML5 document)
@@ -28,7 +29,7 @@ def check_html_path(args) -> pathlib.Path | None:
     path = pathlib.Path(args.html)
     problem = output_file_problem(path) or _replacing_problem(path, args)
     if problem:
-        raise SystemExit(f"tegrasp: error: --html {path} {problem}, e.g. replay.html")
+        raise SystemExit(f"{ERROR_LEAD}--html {path} {problem}, e.g. replay.html")
     return path
 
 

@@ -21,7 +21,7 @@ import zlib
 import numpy as np
 
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
-from tegrasp_drake.rig.files import one_line
+from tegrasp_drake.rig.files import is_read_failure, one_line, read_error_remedy
 from tegrasp_drake.rig.npz_headers import MAX_TRIAL_LOG_BYTES, checked_npz_arrays
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
@@ -82,6 +82,9 @@ def load_tactile_recording(path, *, bare: bool = True) -> TactileRecording:
             "meta", "channels", "t_slow", "gripper_command"), max_bytes=MAX_TRIAL_LOG_BYTES,
             text=("meta",), known=("meta", *ARRAY_FIELDS), kind="a trial log")
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
+        if is_read_failure(e):  # the disk's error, not the file's: no word of damage
+            raise TactileRecordingError(f"'{path}' cannot be read ({e.strerror or e}); "
+                                        f"{read_error_remedy(e)}") from None
         raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
                                     f"and pad_acceleration (or it is truncated or corrupt): "
                                     f"{type(e).__name__}: {e}") from None

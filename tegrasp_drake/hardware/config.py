@@ -18,8 +18,8 @@ import typing
 from pydrake.common.yaml import yaml_dump_typed
 
 from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
-from tegrasp_drake.hardware.serial_urls import (is_serial_url, serial_url_problem,
-                                                 wrapped_device)
+from tegrasp_drake.hardware.serial_urls import (is_serial_url, named_paths,
+                                                 serial_url_problem, wrapped_device)
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import bounded, check_ranges, chosen
 from tegrasp_drake.modelgen.jaco2_dh import continuous_joints_problem
@@ -461,15 +461,21 @@ def shared_lcm_url_problem(url: str) -> str | None:
 
 
 def same_serial_line(a: str, b: str) -> bool:
-    """Whether two configured ports are one line: the same name, the same file after symlinks,
-    or the same character device (st_rdev, e.g. /dev/serial/by-id/... and /dev/ttyUSB0).
-    pyserial URLs (`loop://`, `socket://...`) compare by name only, but spy://, which
-    wraps a device, as that device."""
+    """Whether two configured ports are one line: the same name, or the same device
+    (same_path). pyserial URLs (`loop://`, `socket://...`) compare by name only, but spy://,
+    which wraps a device, as that device."""
     a, b = wrapped_device(a), wrapped_device(b)
     if a == b:
         return True
     if "://" in a or "://" in b:
         return False
+    return same_path(a, b)
+
+
+def same_path(a: str, b: str) -> bool:
+    """Whether two paths are one file or device: the same file after symlinks, or the same
+    character device (st_rdev, e.g. /dev/serial/by-id/... and /dev/ttyUSB0). A path not
+    there yet is compared by its resolved name."""
     if os.path.realpath(a) == os.path.realpath(b):
         return True
     try:
@@ -479,6 +485,18 @@ def same_serial_line(a: str, b: str) -> bool:
     return ((first.st_dev, first.st_ino) == (second.st_dev, second.st_ino)
             or (stat.S_ISCHR(first.st_mode) and stat.S_ISCHR(second.st_mode)
                 and first.st_rdev == second.st_rdev))
+
+
+def shared_port_path(a: str, b: str) -> tuple[str, str, str] | None:
+    """(path, what it is to `a`, what to `b`) of a device or file both ports open
+    (serial_urls.named_paths: a device, spy://'s log file), else None: two spy:// ports
+    logging to one file would interleave (and empty) each other's log; a spy log on the other
+    device's port would write into that line."""
+    for path_a, what_a in named_paths(a).items():
+        for path_b, what_b in named_paths(b).items():
+            if same_path(path_a, path_b):
+                return path_a, what_a, what_b
+    return None
 
 
 def serial_port_problem(port: str) -> str | None:
@@ -632,6 +650,15 @@ def validate_hardware_config(config: HardwareStationConfig, source: str,
             f"'{prefix}gripper.port' ({shown(gripper)}) are one serial line; each device needs "
             "its own (the myRIO's reader would take the gripper's answers): set one of them to "
             "its device's port")
+    shared = shared_port_path(tactile, gripper)
+    if shared:
+        path, what_tactile, what_gripper = shared
+        roles = (f"the {what_tactile} of each" if what_tactile == what_gripper else
+                 f"the tactile port's {what_tactile}, the gripper port's {what_gripper}")
+        raise ConfigError(
+            f"{source}: fields '{prefix}tactile.port' ({shown(tactile)}) and "
+            f"'{prefix}gripper.port' ({shown(gripper)}) both name {shown(path)} ({roles}); "
+            "each port needs its own: give one of them another file")
     if config.tactile.calibration_file:  # read now, not when the devices start
         from tegrasp_drake.hardware.myrio.tactile_calibration import LoadTactileCalibration
         try:

@@ -74,6 +74,26 @@ def wrapped_device(port: str) -> str:
     return parts.netloc + parts.path or port
 
 
+def named_paths(port: str) -> dict[str, str]:
+    """{path: what it is} of each device or file `port` opens: a device's path ("device");
+    spy://'s wrapped device and its `?file=` log ("spy log file"); none for other URLs (they
+    name no path). Two ports naming one path would share a line or write one log."""
+    if not is_serial_url(port):
+        return {port: "device"}
+    if port.split("://", 1)[0].lower() != "spy":
+        return {}
+    paths = {wrapped_device(port): "device"}
+    try:
+        query = urllib.parse.urlsplit(port).query
+    except ValueError:
+        return paths
+    for option in query.split("&") if query else ():
+        key, _, value = option.partition("=")
+        if urllib.parse.unquote_plus(key) == "file" and value:
+            paths.setdefault(urllib.parse.unquote_plus(value), "spy log file")
+    return paths
+
+
 def serial_url_problem(url: str, device_problem) -> str | None:
     """Why pyserial would not open the URL `url` as the package's table takes it
     (PYSERIAL_URL_SCHEMES), in words that follow the URL and say what to do, or None.

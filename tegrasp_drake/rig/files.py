@@ -5,6 +5,7 @@ FIFOs and devices, SIGTERM and SIGHUP ending a run as Ctrl-C does,
 one-line UserPathError, strict JSON, and the one reader of a JSON file (read_json_file)."""
 
 import contextlib
+import contextvars
 import errno
 import fcntl
 import json
@@ -203,6 +204,24 @@ def write_error_remedy(error: OSError) -> str:
     return "give a folder you can write"
 
 
+def read_error_remedy(error: OSError) -> str:
+    """What to do about a read that failed with `error`, in the words a reader's error line
+    ends with: its owner's permission for a file this user may not read (EACCES, EPERM); else
+    (EIO: a failing disk, a network file system gone) the system could not read it, which
+    says nothing of its content: never a damaged file, never one to remake."""
+    if error.errno in (errno.EACCES, errno.EPERM):
+        return "ask its owner to make it readable, or give a file you can read"
+    return ("the system could not read it, which says nothing of its content; read it again "
+            "once the disk or file system answers, or give a copy")
+
+
+def is_read_failure(error: BaseException) -> bool:
+    """Whether `error` is the operating system's refusal to read a file (an OSError carrying
+    an errno: EIO, EACCES, ...), not a reader's finding about what the file holds (zipfile's,
+    numpy's and the package's own OSErrors carry none)."""
+    return isinstance(error, OSError) and error.errno is not None
+
+
 @contextlib.contextmanager
 def temporary_sibling(path, *, start: bytes):
     """A temporary file name beside `path` for a writer that wants a name (np.savez,
@@ -296,10 +315,29 @@ def installed_package_dir() -> pathlib.Path | None:
     return package
 
 
+# Whether folder_problem may prove a folder writable by making (and removing at once) an entry
+# in it; unprobed_folder_checks turns it off for a block.
+_WRITE_PROBES = contextvars.ContextVar("tegrasp_write_probes", default=True)
+
+
+@contextlib.contextmanager
+def unprobed_folder_checks():
+    """folder_problem without its probe entry for the block: a dry run leaves no trace, not
+    even a folder's changed modification time or an entry another process could see for a
+    moment. It asks access(2) (os.access) alone, which reads the mode bits, ACLs and a
+    read-only mount; what only a write shows (a full disk, a server that refuses) is left to
+    the real run's own check."""
+    token = _WRITE_PROBES.set(False)
+    try:
+        yield
+    finally:
+        _WRITE_PROBES.reset(token)
+
+
 def folder_problem(path) -> str | None:
     """Why `path` cannot be, or be made as, a folder this user writes in (None if it can),
-    proven by making an entry in its nearest existing part (permission bits do not tell);
-    _place_problem first."""
+    proven by making an entry in its nearest existing part (permission bits do not tell;
+    within unprobed_folder_checks, os.access alone); _place_problem first."""
     problem = _place_problem(path)
     if problem:
         return problem
@@ -312,6 +350,8 @@ def folder_problem(path) -> str | None:
         return f"{place} is not a folder"
     if not os.access(place, os.W_OK | os.X_OK):
         return f"{place} is not writable"
+    if not _WRITE_PROBES.get():
+        return None
     try:
         os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
     except OSError as e:

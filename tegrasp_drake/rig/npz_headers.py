@@ -13,6 +13,7 @@ import zlib
 import numpy as np
 import numpy.lib.format as npy_format
 
+from tegrasp_drake.rig.files import is_read_failure
 from tegrasp_drake.rig.ranges import is_integer
 
 
@@ -108,7 +109,9 @@ def _read_npy_header(member, name: str) -> tuple[tuple, np.dtype]:
     they advise `allow_pickle=True` or `max_header_size`, unsafe and not the user's to set."""
     try:
         version = npy_format.read_magic(member)
-    except (ValueError, EOFError, OSError, zlib.error):
+    except (ValueError, EOFError, OSError, zlib.error) as error:
+        if is_read_failure(error):  # the disk's, not the file's: passed on as it is
+            raise
         raise NpzHeaderError(f"'{name}' is not a numpy array (it lacks the .npy magic "
                              "string)") from None
     form = _HEADER_LENGTH_FORMS.get(version)
@@ -124,7 +127,9 @@ def _read_npy_header(member, name: str) -> tuple[tuple, np.dtype]:
                                  f"the {_MAX_HEADER_BYTES} of any array written here (a "
                                  "plain array's is a few hundred)")
         header = member.read(declared) if declared is not None else b""
-    except (OSError, zlib.error):
+    except (OSError, zlib.error) as error:
+        if is_read_failure(error):
+            raise
         header, declared = b"", None
     if declared is None or len(header) < declared:
         raise NpzHeaderError(f"'{name}' ends inside its .npy header")
@@ -134,7 +139,9 @@ def _read_npy_header(member, name: str) -> tuple[tuple, np.dtype]:
         shape, _, dtype = read_header(io.BytesIO(length_field + header),
                                       max_header_size=_MAX_HEADER_BYTES)
     except (ValueError, EOFError, OSError, SyntaxError, tokenize.TokenError,
-            zlib.error):  # numpy parses the header's dict as Python
+            zlib.error) as error:  # numpy parses the header's dict as Python
+        if is_read_failure(error):
+            raise
         raise NpzHeaderError(f"'{name}' has a .npy header that cannot be read as an "
                              "array's (its shape, dtype and order)") from None
     return shape, dtype
@@ -148,18 +155,13 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
     characters when given; numpy stores 4 bytes a character), and (when `known`, the array
     names the format has, is given) it holds no other array; NpzHeaderError otherwise, naming
     `kind` (what the file is meant to be), before a byte is read when `path` is not a regular
-    file (a FIFO or /dev/zero never ends)."""
-    try:
-        mode = os.stat(path).st_mode
-    except OSError as e:
-        raise NpzHeaderError(f"it cannot be read: {e.strerror or e}") from None
-    if not stat.S_ISREG(mode):
+    file (a FIFO or /dev/zero never ends). The system's error reading the file (EIO, EACCES:
+    files.is_read_failure) is raised as that OSError, never as an NpzHeaderError: a file
+    that could not be read is not a damaged one."""
+    if not stat.S_ISREG(os.stat(path).st_mode):
         raise NpzHeaderError("it is not a regular file (a folder, named pipe or device); "
                              "give the trial.npz file")
-    try:
-        directory = central_directory_bytes(path)
-    except OSError as e:
-        raise NpzHeaderError(f"it cannot be read: {e.strerror or e}") from None
+    directory = central_directory_bytes(path)
     if directory is not None and directory > MAX_CENTRAL_DIRECTORY_BYTES:
         raise NpzHeaderError(f"its zip directory declares {directory} bytes of members, more "
                              f"than the {MAX_CENTRAL_DIRECTORY_BYTES} of the few arrays {kind} "

@@ -31,7 +31,8 @@ from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.number_text import float_beyond_problem, number_text
 from tegrasp_drake.rig.ranges import holds_settings, number_problem, python_scalar, range_of
 from tegrasp_drake.rig.unset_fields import empty_meaning
-from tegrasp_drake.rig.files import InputTooLargeError, NotAFileError, error_line, read_bounded
+from tegrasp_drake.rig.files import (InputTooLargeError, NotAFileError, error_line, read_bounded,
+                                     read_error_remedy)
 
 
 class ConfigError(ValueError):
@@ -51,8 +52,9 @@ class YamlSyntaxError(ConfigError):
 
 
 class UnreadableFileError(ConfigError):
-    """A configuration file this user cannot read (no permission, an I/O error): a file that
-    cannot be read (exit 1 wherever it is given), not one refused for what it holds."""
+    """A configuration file that cannot be read (missing, a folder or device, no permission,
+    an I/O error): bad input, exit 1 wherever it is given (docs/user-guide.md, "Exit codes"),
+    not a file refused for what it holds (a sweep, transfer or sensitivity spec: exit 2)."""
 
 
 def read_yaml_file(path: str | pathlib.Path, what: str):
@@ -63,17 +65,18 @@ def read_yaml_file(path: str | pathlib.Path, what: str):
 
 
 def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
-    """The text of the YAML file at `path`, unparsed; ConfigError names what keeps it from
-    being read (missing, a folder or device, too large, not UTF-8), never its content."""
+    """The text of the YAML file at `path`, unparsed; UnreadableFileError when there is no
+    file to read (missing, a folder or device, no permission, an I/O error), ConfigError for
+    text that is no configuration's (too large, not UTF-8), never its content."""
     path = pathlib.Path(path)
     try:
         if path.is_dir():
-            raise ConfigError(f"{path}: cannot read {what}: it is a folder; give a file")
+            raise UnreadableFileError(f"{path}: cannot read {what}: it is a folder; give a file")
         text = read_bounded(path, MAX_YAML_BYTES).decode("utf-8")
     except FileNotFoundError:
-        raise ConfigError(f"{path}: cannot read {what}: it does not exist") from None
+        raise UnreadableFileError(f"{path}: cannot read {what}: it does not exist") from None
     except NotAFileError as e:
-        raise ConfigError(f"{path}: cannot read {what}: it {e.strerror}") from None
+        raise UnreadableFileError(f"{path}: cannot read {what}: it {e.strerror}") from None
     except InputTooLargeError:
         raise ConfigError(f"{path}: more than {MAX_YAML_BYTES} bytes of YAML; a configuration "
                           f"is at most {MAX_YAML_BYTES} bytes") from None
@@ -81,9 +84,8 @@ def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
         raise ConfigError(f"{path}: cannot read {what}: it is not UTF-8 text (byte "
                           f"{e.start}); give a YAML file") from None
     except OSError as e:
-        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}; ask its "
-                                  "owner to make it readable, or give a file you can read"
-                                  ) from None
+        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}; "
+                                  f"{read_error_remedy(e)}") from None
     return text
 
 

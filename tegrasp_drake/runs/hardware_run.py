@@ -41,7 +41,7 @@ from tegrasp_drake.scenario.trial_log_writer import package_versions
 from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.rig.number_text import count_text
-from tegrasp_drake.rig.api_boundary import PathLike, public_api
+from tegrasp_drake.rig.api_boundary import SEARCHED_FOLDER, PathLike, public_api
 from tegrasp_drake.runs.hardware_log_reader import scan_lcm_log
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
@@ -340,15 +340,18 @@ def run_info_message(scenario, config, controller: str, events_dir: str):
 @public_api
 def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None = None,
                     controller: str | None = None, events: dict | None = None,
-                    corrective_events: dict | None = None, events_dir: str = "",
+                    corrective_events: dict | None = None,
+                    events_dir: Annotated[PathLike | None, SEARCHED_FOLDER] = None,
                     log_path: PathLike | None = None,
                     duration: Annotated[float | None, HARDWARE_RUN_DURATION] = None,
                     drake_lcm: DrakeLcm | None = None, out: Callable = print,
                     progress: Callable | None = None) -> HardwareRunResult:
     """Runs the grasp on the devices of `config` (default: the scenario's `station`, then a
     HardwareStationConfig) in real time (module docstring). controller, events,
-    corrective_events: default the scenario's and the package's; drake_lcm: instead of one on
-    the config's URL; out: prints a line; progress: progress(t, end) [s of Context time]."""
+    corrective_events: default the scenario's and the package's; events_dir: the folder
+    `events` were read from, recorded in the run's log for its replay (None: none given, the
+    replay searches the default folders); drake_lcm: instead of one on the config's URL; out:
+    prints a line; progress: progress(t, end) [s of Context time]."""
     scenario = rechecked(scenario, "run_on_hardware: scenario")  # changed after loading?
     config = config or scenario.station
     if not isinstance(config, HardwareStationConfig):
@@ -358,7 +361,8 @@ def run_on_hardware(scenario: Scenario, *, config: HardwareStationConfig | None 
         scenario = with_controller(scenario, controller)
     with realtime_scheduling(config.scheduling, config.realtime_priority) as scheduling:
         out(f"control loop: {scheduling}")
-        return _run(scenario, config, events, corrective_events, events_dir,
+        events_folder = "" if events_dir is None else os.fspath(events_dir)  # the log's field
+        return _run(scenario, config, events, corrective_events, events_folder,
                     log_path, duration, drake_lcm, out, progress)
 
 

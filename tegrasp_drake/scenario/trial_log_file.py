@@ -24,6 +24,7 @@ from collections.abc import Callable
 import numpy as np
 
 from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, file_problem, load_json,
+                                     is_read_failure, read_error_remedy,
                                      one_line, temporary_sibling)
 from tegrasp_drake.scenario.logged_channels import logged_channels_problem
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS, TAXELS_PER_PAD
@@ -123,17 +124,25 @@ def trial_log_checksum(meta: dict, arrays: dict) -> str:
 
 def checksum_problem(meta: dict, arrays: dict) -> str | None:
     """What is wrong with a trial log's checksum (meta 'checksum', trial_log_checksum of the
-    rest), in words that follow the log's name, else None: none stored (a log written by hand
-    or before logs carried one), or one its contents do not give (edited after writing)."""
+    rest), in words that follow the log's name, else None: one its contents do not give
+    (edited after writing). A log that holds none is unchecksummed_log_refusal's."""
     stored = meta.get(CHECKSUM_FIELD)
-    if stored is None:
-        return (f"holds no checksum (meta '{CHECKSUM_FIELD}'), which every trial log this "
-                "package writes carries, so an edited log cannot be told from a trial's")
     actual = trial_log_checksum(meta, arrays)
     if not isinstance(stored, str) or stored != actual:
         return (f"was changed after it was written (its stored checksum "
                 f"{shorten(repr(stored), 80)} is not its contents' SHA-256 {actual})")
     return None
+
+
+def unchecksummed_log_refusal(path) -> str:
+    """The refusal of the trial log at `path` that holds no checksum (meta 'checksum'): one an
+    earlier version of the package wrote, before trial logs carried one. A run that reuses a
+    stored log (a campaign's LOGS_DIR, a sweep's --logs read by its reports) would meet it
+    again on every run, so the words say to delete it, which makes that run write it anew."""
+    return (f"trial log '{path}' was written by an earlier version of the package, without "
+            f"a checksum (meta '{CHECKSUM_FIELD}'), so an edited log cannot be told from a "
+            f"trial's; delete '{path}' (a run that reuses its logs then writes it anew) or run "
+            "the trial again to replace it")
 
 
 class LogNotWritten(Exception):
@@ -196,9 +205,17 @@ def written_trial_log(path: pathlib.Path, *,
     check_trial_log_file(path)
     try:  # a log this user cannot open (another user's) is not a damaged one: no remake
         os.close(os.open(path, os.O_RDONLY | os.O_NONBLOCK))
+        return _checked_trial_log(path, any_version)
     except OSError as e:
-        raise TrialLogError(f"trial log '{path}' cannot be read ({e.strerror or e}); ask its "
-                            "owner to make it readable, or give a log you can read") from None
+        if not is_read_failure(e):
+            raise
+        raise TrialLogError(f"trial log '{path}' cannot be read ({e.strerror or e}); "
+                            f"{read_error_remedy(e)}") from None
+
+
+def _checked_trial_log(path: pathlib.Path, any_version: bool) -> tuple[dict, dict]:
+    """written_trial_log's checks of a log it could open; the system's error reading it
+    (files.is_read_failure) raised as that OSError."""
     try:
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",),
@@ -219,6 +236,8 @@ def written_trial_log(path: pathlib.Path, *,
                             "a trial log") from None
     except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error,
             UnicodeDecodeError) as e:
+        if is_read_failure(e):
+            raise
         raise TrialLogError(f"trial log '{path}' is truncated or corrupt ({type(e).__name__}: "
                             f"{e}); run the trial again to remake it") from None
     if not isinstance(meta, dict):
@@ -237,6 +256,8 @@ def written_trial_log(path: pathlib.Path, *,
                             f"{shorten(repr(version))}, this package reads "
                             f"{FORMAT_VERSION}; run the trial again with this package to "
                             "remake it")
+    if meta.get(CHECKSUM_FIELD) is None:
+        raise TrialLogError(unchecksummed_log_refusal(path))
     problem = checksum_problem(meta, arrays)  # before what an edit would make of its contents
     if problem:
         raise TrialLogError(f"trial log '{path}' {problem}; run the trial again to remake it")

@@ -18,7 +18,7 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, keys_over
                                           require_fields)
 from tegrasp_drake.sensitivity.parameters import (UNCERTAIN_PARAMETERS, UncertainParameter,
                                                   parameter)
-from tegrasp_drake.sweep.spec import SweepSpec
+from tegrasp_drake.sweep.spec import SweepSpec, refuse_too_many
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig.files import MAX_STATE_FILE_BYTES, read_json_file
 from tegrasp_drake.rig.ranges import SEED_RANGE, bounded
@@ -31,6 +31,8 @@ EVENTS_CHOICES = ("each_point", "default_point")
 POINTS_FILE = "points.json"  # OUT/points.json: what each point sets
 MAX_LATIN_HYPERCUBE = 1000  # samples; each is a whole sweep
 _FIELDS = ("parameters", "events", "events_seed", "sweep")
+# Each uncertain parameter is named at most once, so a spec names at most all of them.
+MAX_SENSITIVITY_PARAMETERS = len(UNCERTAIN_PARAMETERS)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -109,6 +111,8 @@ def _parse_parameters(value, source: str) -> tuple[UncertainParameter, ...]:
         raise ConfigError(f"{source}: field 'parameters' must be a list of the uncertain "
                           "parameters' keys (docs/model.md, \"What was guessed\"), or left out "
                           "for all of them")
+    refuse_too_many("parameters", len(value), MAX_SENSITIVITY_PARAMETERS, "parameters", source,
+                    study="sensitivity spec")
     chosen = []
     for k, key in enumerate(value):
         try:

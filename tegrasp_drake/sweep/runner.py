@@ -15,6 +15,7 @@ import multiprocessing
 import os
 import pickle
 import signal
+import struct
 import tempfile
 import threading
 import time
@@ -48,7 +49,7 @@ from tegrasp_drake.sweep.spec import (CONFIRMED_TRIALS, SweepSpec, TrialSpec, ch
                                       expand_trials)
 from tegrasp_drake.rig.api_boundary import OUTPUT_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.files import (FolderHeldError, UserPathError, folder_problem, held_folder,
-                                     non_folder_on_path)
+                                     non_folder_on_path, unprobed_folder_checks)
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.ranges import Range
 from tegrasp_drake.rig.echo import shorten
@@ -336,7 +337,8 @@ def check_sweep_folder(spec: SweepSpec, trial_function: Callable, out_dir
         _check_records_fit(trials, trial_function, loaded.records, out_dir)
     pending = [trial for trial in trials
                if loaded.records.get(trial["trial_id"], {}).get("status") != "ok"]
-    _check_records_writable(out_dir, pending, set_aside=loaded.corrupt)
+    with unprobed_folder_checks():  # nothing made, not even a probe of trials/
+        _check_records_writable(out_dir, pending, set_aside=loaded.corrupt)
     return len(pending), dict(loaded.corrupt), in_use
 
 
@@ -700,9 +702,19 @@ def connect_scheduler(scheduler: str,
         raise SweepError(f"cannot reach the Dask scheduler at {scheduler}: {error}")
     if error is not None:
         raise SweepError(f"what answers at {scheduler} is not a Dask scheduler "
-                         f"({type(error).__name__}: {shorten(str(error))}): give the address "
-                         "`dask scheduler` prints")
+                         f"({_handshake_problem(error)}): give the address `dask scheduler` "
+                         "prints")
     return made["client"]
+
+
+def _handshake_problem(error: Exception) -> str:
+    """What went wrong in a Dask handshake, in words that follow "is not a Dask scheduler":
+    bytes that do not decode as Dask's frames (a length of 2^62 bytes that numpy cannot
+    allocate, a shape or a value out of range) are no Dask reply, whatever distributed's
+    decoder raised for them; any other error is named with its type."""
+    if isinstance(error, (MemoryError, OverflowError, ValueError, struct.error)):
+        return "its reply is not Dask's protocol"
+    return f"{type(error).__name__}: {shorten(str(error))}"
 
 
 # The loggers distributed configures (dask's `logging` config) and tornado's under them.

@@ -177,6 +177,32 @@ def trial_log_with(path, meta=None, **arrays):
     trial_log(path, **arrays)
     return edit_trial_log(path, path, lambda stored: stored.update(meta or {}))
 
+def denied_for(paths, real):
+    """`real` (a reader whose first argument is a path: os.lstat, os.open, os.scandir,
+    read_bounded), raising EACCES for `paths`: another user's files, as root (who ignores
+    modes) cannot make them; every other path read as before."""
+    def call(path=".", *args, **kwargs):
+        if str(path) in {str(p) for p in paths}:
+            raise PermissionError(13, "Permission denied", str(path))
+        return real(path, *args, **kwargs)
+    return call
+
+
+def deny_reading(monkeypatch, module, name: str, *paths) -> None:
+    """Makes the reader `module.name` refuse `paths` for permission (denied_for)."""
+    monkeypatch.setattr(module, name, denied_for(paths, getattr(module, name)))
+
+
+def finished_fake_sweep(out, capfd) -> list[str]:
+    """The command line of a one-trial sweep (box, open_loop, the fake trial) into `out`,
+    run once to its end: a results folder holding one finished record."""
+    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
+            "--out", str(out), "--workers", "1", "--no-progress",
+            "--trial-function", "tests.fake_trials:fake_trial"]
+    assert run_cli(argv, capfd)[0] == 0
+    return argv
+
+
 SEED = 604
 
 

@@ -484,7 +484,7 @@ def test_a_command_line_that_does_not_parse_is_one_line_naming_the_command(argv,
     (["transfer", "spec.yaml", "--out", ""], 2),
     (["sweep", "--workers", "0", *FAKE_TRIALS], 1),
     (["sweep", "--spec", "empty.yaml", "--out", "o", *FAKE_TRIALS], 2),
-    (["sensitivity", "missing.yaml", "--out", "o"], 2),
+    (["sensitivity", "missing.yaml", "--out", "o"], 1),
     (["hardware", "--config", "missing.yaml"], 1),
     (["plot", "trial", "missing.npz"], 1),
 ])

@@ -10,8 +10,8 @@ import pytest
 from tegrasp_drake.events import event_file, events_folder
 from tegrasp_drake.events.events_folder import save_memorized_events
 from tegrasp_drake.rig import files, paths
-from tests.bad_input.probes import (assert_one_line_error, edit_json, folder_contents,
-                                    memorized_events, run_cli, run_probe)
+from tests.bad_input.probes import (assert_one_line_error, denied_for, edit_json,
+                                    folder_contents, memorized_events, run_cli, run_probe)
 
 
 def test_the_corrective_events_are_read_from_the_events_folder_given(events_copy, capfd):
@@ -608,16 +608,6 @@ def test_an_object_folder_that_cannot_be_written_is_refused_before_simulating(
     assert folder_contents(events) == before
 
 
-def _denied_for(paths, real):
-    """`real` (os.lstat, os.open, os.scandir), raising EACCES for `paths`: another user's files,
-    as root (who ignores modes) cannot make them."""
-    def call(path, *args, **kwargs):
-        if str(path) in {str(p) for p in paths}:
-            raise PermissionError(13, "Permission denied", str(path))
-        return real(path, *args, **kwargs)
-    return call
-
-
 # Rule: an index this user cannot look at (its folder may be listed but not searched) or
 # read is said as one that cannot be read, with what to do; never as "no index.json", as a
 # folder of other files, or with the advice to record the events again.
@@ -626,8 +616,8 @@ def test_an_index_that_cannot_be_read_is_said_so_not_absent_or_to_be_remade(
     events = tmp_path / "ev"
     save_memorized_events(events, memorized_events("box", seed=3))
     index = events / "index.json"
-    monkeypatch.setattr(os, "lstat", _denied_for([index], os.lstat))
-    monkeypatch.setattr(os, "open", _denied_for([index], os.open))
+    monkeypatch.setattr(os, "lstat", denied_for([index], os.lstat))
+    monkeypatch.setattr(os, "open", denied_for([index], os.open))
     assert event_file.has_index(events)
     with pytest.raises(event_file.MemorizedEventError) as refused:
         events_folder.find_memorized_events([events], "box")

@@ -274,13 +274,14 @@ def test_a_verbose_sweep_logs_what_it_read_ran_and_wrote(tmp_path, capfd, caplog
 
 
 def test_a_verbose_plot_logs_what_it_read_and_wrote(tmp_path, capfd, caplog):
-    out = tmp_path / "events.png"
-    code, text = run_cli(["plot", "events", "-v", "--events", "events", "--out", str(out)],
+    from tegrasp_drake.rig.paths import package_events_dir
+    events, out = package_events_dir(), tmp_path / "events.png"
+    code, text = run_cli(["plot", "events", "-v", "--events", str(events), "--out", str(out)],
                          capfd)
     assert code == 0, text
     info = [record.getMessage() for record in caplog.records
             if record.levelname == "INFO" and record.name.startswith("tegrasp_drake")]
-    assert any("reading events" in line and str(out) in line for line in info), info
+    assert any(f"reading {events}" in line and str(out) in line for line in info), info
     assert any(f"wrote {out}" in line for line in info), info
 
 

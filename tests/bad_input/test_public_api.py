@@ -597,6 +597,7 @@ _EMPTY_FILE_NAME_CALLS = {
     ("load_memorized_events", "events_dir"): lambda: T.load_memorized_events("", "box"),
     ("load_trial_log", "path"): lambda: T.load_trial_log(""),
     ("run_on_hardware", "log_path"): lambda: T.run_on_hardware(LoadScenario(), log_path=""),
+    ("run_on_hardware", "events_dir"): lambda: T.run_on_hardware(LoadScenario(), events_dir=""),
 }
 
 

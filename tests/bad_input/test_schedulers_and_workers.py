@@ -15,7 +15,7 @@ import pytest
 from tegrasp_drake import cli
 from tegrasp_drake.sweep.records import load_records
 from tests import killed_runs
-from tests.bad_input.probes import FAKE_TRIALS, assert_one_line_error, run_cli
+from tests.bad_input.probes import FAKE_TRIALS, assert_one_line_error, one_line_of, run_cli
 
 
 def test_more_workers_than_cores_is_refused_unless_asked_for(tmp_path, monkeypatch, capfd):
@@ -120,7 +120,9 @@ def test_a_trial_function_module_that_raises_on_import_is_one_line(tmp_path, cap
 @pytest.fixture
 def listener():
     """A local TCP service on a free port that is not a Dask scheduler: `silent` accepts and
-    says nothing; `garbage` sends 0xff bytes (a frame length of 2**64 - 1) and hangs up."""
+    says nothing; `garbage` sends 0xff bytes (a frame length of 2**64 - 1) and hangs up;
+    `huge_frame` declares a frame of 2**62 bytes (what random bytes mostly declare: numpy's
+    MemoryError when distributed allocates it) and hangs up."""
     import socket
     import threading
     servers, held = [], []
@@ -140,8 +142,10 @@ def listener():
                 if kind == "silent":
                     held.append(connection)
                     continue
+                reply = (2**62).to_bytes(8, "little") * 512 if kind == "huge_frame" else (
+                    b"\xff" * 4096)
                 with contextlib.suppress(OSError):
-                    connection.sendall(b"\xff" * 4096)
+                    connection.sendall(reply)
                 connection.close()
         threading.Thread(target=serve, daemon=True).start()
         return f"tcp://127.0.0.1:{server.getsockname()[1]}"
@@ -150,17 +154,23 @@ def listener():
         connection.close()
 
 
-@pytest.mark.parametrize("kind", ["silent", "garbage"])
+@pytest.mark.parametrize("kind", ["silent", "garbage", "huge_frame"])
 def test_a_scheduler_address_that_is_not_a_dask_scheduler_is_one_error(listener, monkeypatch,
                                                                        kind):
     """A silent peer held the Client past distributed's timeout (forever); garbage was exit
-    70 from inside distributed's frame reader. The wall-time bound is shortened here only so
-    the test takes seconds."""
+    70 from inside distributed's frame reader, and a reply declaring a huge frame is said as
+    no Dask reply, not as the MemoryError of allocating it. The wall-time bound is shortened
+    here only so the test takes seconds."""
     pytest.importorskip("distributed")
     from tegrasp_drake.sweep import runner
     monkeypatch.setattr(runner, "DASK_ANSWER_BOUND_S", 3.0)
-    with pytest.raises(runner.SweepError, match="Dask scheduler"):
-        runner.connect_scheduler(listener(kind))
+    address = listener(kind)
+    with pytest.raises(runner.SweepError) as refused:
+        runner.connect_scheduler(address)
+    text = one_line_of(refused.value)
+    if kind != "silent":
+        assert text == (f"what answers at {address} is not a Dask scheduler (its reply is "
+                        "not Dask's protocol): give the address `dask scheduler` prints")
 
 
 # Rule: a scheduler that cannot be reached is said in one line as soon as that is known: a

@@ -8,6 +8,7 @@ import pytest
 
 from tegrasp_drake.hardware.config import LoadHardwareConfig
 from tegrasp_drake.rig.typed_yaml import ConfigError
+from tests.bad_input.probes import assert_one_line_error, one_line_of, run_cli
 
 
 def _load(tmp_path, port, field="tactile"):
@@ -92,6 +93,35 @@ def test_a_spy_file_in_no_folder_or_a_folder_is_refused(tmp_path):
         _load(tmp_path, f"spy:///dev/ttyUSB7?file={tmp_path}/none/spy.log")
     with pytest.raises(ConfigError, match="is a folder: give a file's path"):
         _load(tmp_path, f"spy:///dev/ttyUSB7?file={tmp_path}")
+
+
+@pytest.mark.parametrize("gripper_port, roles", [
+    ("spy:///dev/ttyUSB8?file={folder}/./spy.log", "the spy log file of each"),
+    ("{folder}/spy.log", "the tactile port's spy log file, the gripper port's device"),
+], ids=["two-spy-urls", "spy-file-on-the-other-port"])
+def test_two_ports_naming_one_file_are_refused_naming_both_fields(tmp_path, capfd,
+                                                                  gripper_port, roles):
+    config = tmp_path / "hw.yaml"
+    tactile = f"spy:///dev/ttyUSB7?file={tmp_path}/spy.log"
+    gripper = gripper_port.format(folder=tmp_path)
+    config.write_text(f"tactile: {{port: '{tactile}'}}\ngripper: {{port: '{gripper}'}}\n")
+    with pytest.raises(ConfigError) as refused:
+        LoadHardwareConfig(config)
+    text = one_line_of(refused.value)
+    assert text.startswith(f"{config}: fields 'tactile.port' ("), text
+    assert "and 'gripper.port' (" in text and f"({roles}); each port needs its own: give one " \
+        "of them another file" in text, text
+    code, text = run_cli(["hardware", "--config", str(config)], capfd)
+    assert_one_line_error(code, text, str(config), "'tactile.port'", "'gripper.port'",
+                          "both name")
+    assert not (tmp_path / "spy.log").exists()
+
+
+def test_two_spy_urls_logging_to_their_own_files_are_taken(tmp_path):
+    config = tmp_path / "hw.yaml"
+    config.write_text(f"tactile: {{port: 'spy:///dev/ttyUSB7?file={tmp_path}/a.log'}}\n"
+                      f"gripper: {{port: 'spy:///dev/ttyUSB8?file={tmp_path}/b.log'}}\n")
+    assert LoadHardwareConfig(config).gripper.port.endswith("b.log")
 
 
 def test_a_spy_url_on_the_other_devices_line_is_one_serial_line(tmp_path):

@@ -1,4 +1,4 @@
-"""Every list of a sweep or transfer spec is counted against its stated maximum before
+"""Every list of a sweep, transfer or sensitivity spec is counted against its stated maximum before
 anything is built from it (the cheap checks first), and every count field has a declared
 range: a grid of millions of markers, a cell matrix of thousands of worlds or an attempt
 count no sweep can make is refused in one line giving the count and the maximum, at once."""
@@ -8,6 +8,8 @@ import time
 import pytest
 
 from tegrasp_drake.rig.typed_yaml import ConfigError
+from tegrasp_drake.sensitivity import study as sensitivity_study
+from tegrasp_drake.sensitivity.parameters import UNCERTAIN_PARAMETERS
 from tegrasp_drake.sweep import spec as sweep_spec
 from tegrasp_drake.sweep.spec import (MAX_CONFIRMED_TRIALS, MAX_GRID_MARKERS, MAX_SWEEP_OBJECTS,
                                       SweepSpec, validate_spec)
@@ -40,6 +42,21 @@ def test_a_product_grid_past_the_maximum_is_refused_before_it_is_built(tmp_path,
         f"{spec}: field 'grid' holds 4000000 markers (2000 normal_offsets_m x 2000 "
         f"stroke_offsets_m); a sweep takes at most {MAX_GRID_MARKERS} markers: give fewer, "
         "or split the sweep into several")
+
+
+def test_a_sensitivity_spec_naming_more_parameters_than_there_are_is_refused_before_any_is_read(
+        tmp_path, monkeypatch):
+    monkeypatch.setattr(sensitivity_study, "parameter",
+                        lambda key: pytest.fail(f"parameter {key!r} was looked up"))
+    most = len(UNCERTAIN_PARAMETERS)
+    spec = tmp_path / "s.yaml"
+    spec.write_text(f"parameters: {[entry.key for entry in UNCERTAIN_PARAMETERS] * 1000}\n"
+                    .replace("'", ""))
+    with pytest.raises(ConfigError) as refused:
+        sensitivity_study.LoadSensitivitySpec(spec)
+    assert str(refused.value) == (
+        f"{spec}: field 'parameters' holds {most * 1000} parameters; a sensitivity spec takes "
+        f"at most {most} parameters: give fewer, or split the sensitivity spec into several")
 
 
 @pytest.mark.parametrize("text, field, count, items, most", [

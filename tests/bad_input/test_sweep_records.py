@@ -5,6 +5,7 @@ records would refuse is an error, not a record; records and reports of a folder 
 records are refused in one line."""
 
 import json
+import os
 
 import pytest
 
@@ -13,8 +14,9 @@ from tegrasp_drake.rig import files
 from tegrasp_drake.sweep.records import _checksum, load_records, record_path
 from tegrasp_drake.sweep.runner import run_sweep, run_trial_safely
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, expand_trials
-from tests.bad_input.probes import (assert_one_line_error, events_copy_with_index, forge_record,
-                                    run_cli, sweep_with_events)
+from tests.bad_input.probes import (assert_one_line_error, deny_reading, events_copy_with_index,
+                                    finished_fake_sweep, forge_record, run_cli,
+                                    sweep_with_events)
 from tests.fake_trials import fake_trial, whole_result
 
 
@@ -105,6 +107,31 @@ def test_a_trials_folder_that_cannot_be_written_is_refused_before_any_trial(
     assert "free some space" not in real[1]
     assert dry[1] == real[1]
     assert not records[0].exists() and records[1].read_bytes() == kept
+
+
+# Rule: a dry run leaves no trace: its checks that --out, its trials/ and --logs can be
+# written ask os.access (files.unprobed_folder_checks), making no probe entry there, so no
+# folder's modification time changes, and no missing folder is made.
+def test_a_dry_run_makes_no_probe_in_the_folders_it_checks(tmp_path, capfd, monkeypatch):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n"
+                    "grid: [[0.0, 0.0]]\n")
+    out, logs = tmp_path / "out", tmp_path / "logs"
+    (out / "trials").mkdir(parents=True)
+    logs.mkdir()
+    monkeypatch.setattr(files.tempfile, "mkdtemp",
+                        lambda *a, **k: pytest.fail(f"a probe was made in {k.get('dir')}"))
+    folders = (tmp_path, out, out / "trials", logs)
+    before = {folder: os.stat(folder).st_mtime_ns for folder in folders}
+    new = tmp_path / "new"
+    for given_out, given_logs in ((out, logs), (new / "out", new / "logs")):
+        code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(given_out), "--logs",
+                              str(given_logs), "--trial-function",
+                              "tests.fake_trials:fake_trial", "--dry-run"], capfd)
+        assert code == 0, text
+    assert {folder: os.stat(folder).st_mtime_ns for folder in folders} == before
+    assert not (tmp_path / "new").exists()
+    assert list((out / "trials").iterdir()) == [] and list(logs.iterdir()) == []
 
 
 def test_a_write_refused_for_permission_is_not_told_to_free_space(tmp_path, monkeypatch):
@@ -815,17 +842,8 @@ def test_a_sweep_into_a_folder_of_another_study_is_refused_before_it_runs(tmp_pa
 # a folder without records.
 def test_a_trials_folder_that_cannot_be_read_is_not_called_empty(tmp_path, capfd, monkeypatch):
     out = tmp_path / "out"
-    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
-            "--out", str(out), "--workers", "1", "--no-progress",
-            "--trial-function", "tests.fake_trials:fake_trial"]
-    assert run_cli(argv, capfd)[0] == 0
-    scandir = files.os.scandir
-
-    def denied(path="."):
-        if str(path) == str(out / "trials"):
-            raise PermissionError(13, "Permission denied", str(path))
-        return scandir(path)
-    monkeypatch.setattr(files.os, "scandir", denied)
+    finished_fake_sweep(out, capfd)
+    deny_reading(monkeypatch, files.os, "scandir", out / "trials")
     with pytest.raises(files.UserPathError, match="trials cannot be read .Permission denied"):
         load_records(out)
     code, text = run_cli(["plot", "table1", str(out), "--out", str(tmp_path / "t.png")], capfd)
@@ -838,19 +856,10 @@ def test_a_trials_folder_that_cannot_be_read_is_not_called_empty(tmp_path, capfd
 # is neither set aside nor run again.
 def test_a_record_that_cannot_be_read_is_not_set_aside_or_rerun(tmp_path, capfd, monkeypatch):
     out = tmp_path / "out"
-    argv = ["sweep", "--objects", "box", "--controllers", "open_loop", "--attempts", "1",
-            "--out", str(out), "--workers", "1", "--no-progress",
-            "--trial-function", "tests.fake_trials:fake_trial"]
-    assert run_cli(argv, capfd)[0] == 0
+    argv = finished_fake_sweep(out, capfd)
     record = sorted((out / "trials").glob("*.json"))[0]
     kept, names = record.read_bytes(), sorted(p.name for p in (out / "trials").iterdir())
-    read_bounded = files.read_bounded
-
-    def denied(path, *args, **kwargs):
-        if str(path) == str(record):
-            raise PermissionError(13, "Permission denied", str(path))
-        return read_bounded(path, *args, **kwargs)
-    monkeypatch.setattr(files, "read_bounded", denied)
+    deny_reading(monkeypatch, files, "read_bounded", record)
     for command in ([*argv, "--dry-run"], argv,
                     ["plot", "table1", str(out), "--out", str(tmp_path / "t.png")]):
         code, text = run_cli(command, capfd)

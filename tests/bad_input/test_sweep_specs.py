@@ -9,7 +9,8 @@ import tegrasp_drake
 from tegrasp_drake.rig.ranges import field_range
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.sweep.spec import RandomisationConfig, SweepSpec, validate_spec
-from tests.bad_input.probes import SEED, assert_one_line_error, one_line_of, refusal, run_cli
+from tests.bad_input.probes import (SEED, assert_one_line_error, deny_reading, one_line_of,
+                                    refusal, run_cli)
 
 
 # --- sweep specs ------------------------------------------------------------------------
@@ -324,6 +325,27 @@ def test_a_list_setting_one_key_twice_is_refused_by_the_api_too(tmp_path):
     assert tegrasp_drake.LoadScenario(overrides=[settings[0]] * 2).grasp.grip_force == 30.0
 
 
+# Rule: a configuration file that is not there to read (missing, a folder) is a file that
+# cannot be read, exit 1 for a sweep, transfer or sensitivity spec as for a scenario file or a
+# hardware config (docs/user-guide.md, "Exit codes": exit 2 is a spec refused for what it
+# holds).
+@pytest.mark.parametrize("command, what", [
+    (["sweep", "--spec"], "the sweep spec"), (["transfer"], "the transfer spec"),
+    (["sensitivity"], "the sensitivity spec"), (["trial", "--scenario"], "the scenario file"),
+    (["hardware", "--config"], "the hardware config"),
+], ids=["sweep", "transfer", "sensitivity", "scenario", "hardware"])
+@pytest.mark.parametrize("given, words", [
+    ("missing.yaml", "it does not exist"), ("folder", "it is a folder; give a file"),
+], ids=["missing", "folder"])
+def test_a_configuration_file_that_is_not_there_exits_1(command, what, given, words, tmp_path,
+                                                       capfd):
+    (tmp_path / "folder").mkdir()
+    path = tmp_path / given
+    code, text = run_cli([*command, str(path)], capfd)
+    assert code == 1, text
+    assert_one_line_error(code, text, f"{path}: cannot read {what}: {words}")
+
+
 # Rule: a spec file this user cannot read (another user's: simulated, as root ignores modes) is
 # a file that cannot be read, exit 1 as an unreadable --scenario is; exit 2 is for a spec
 # refused for what it holds.
@@ -333,13 +355,7 @@ def test_a_spec_that_cannot_be_read_exits_1(command, tmp_path, capfd, monkeypatc
     from tegrasp_drake.rig import typed_yaml
     spec = tmp_path / "sp.yaml"
     spec.write_text("objects: [box]\n")
-    read_bounded = typed_yaml.read_bounded
-
-    def denied(path, *args, **kwargs):
-        if str(path) == str(spec):
-            raise PermissionError(13, "Permission denied", str(path))
-        return read_bounded(path, *args, **kwargs)
-    monkeypatch.setattr(typed_yaml, "read_bounded", denied)
+    deny_reading(monkeypatch, typed_yaml, "read_bounded", spec)
     code, text = run_cli([*command, str(spec), "--out", str(tmp_path / "o"), "--workers", "1"],
                          capfd)
     assert code == 1, text

@@ -1,7 +1,8 @@
 """A trial log is read only as its trial wrote it: TrialLog.save stores the SHA-256 of its
 metadata and arrays (meta 'checksum'); every reader (load_trial_log: `tegrasp plot`, the
 emulated myRIO, the sweeps' and recordings' readers) refuses a log whose contents give another
-checksum, or that holds none, in one line naming the file and saying to run the trial again."""
+checksum in one line naming the file and saying to run the trial again; one that holds none
+(an earlier version's) saying to delete it or run the trial again to replace it."""
 
 import json
 
@@ -14,7 +15,8 @@ from tegrasp_drake.emulators.myrio_emulator import (TactileRecordingError,
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_to_yaml
 from tegrasp_drake.scenario.trial_log_file import (CHECKSUM_FIELD, TrialLogError,
                                                    load_trial_log, trial_log_checksum)
-from tests.bad_input.probes import assert_one_line_error, run_cli, trial_log_with
+from tests.bad_input.probes import (assert_one_line_error, one_line_of, run_cli,
+                                    trial_log_with)
 from tests.trial_log_contents import read_trial_log_contents
 
 BOX_SIZE = "size: [0.045, 0.045, 0.11]"  # the box's, in its scenario's YAML
@@ -78,11 +80,30 @@ def test_a_trial_log_edited_after_it_was_written_is_refused_by_every_reader(
     assert_one_line_error(code, text, expected)
 
 
-def test_a_trial_log_without_a_checksum_is_refused(saved_log):
+def test_a_trial_log_without_a_checksum_is_refused_saying_to_delete_or_remake_it(saved_log):
     _edited_by_hand(saved_log, lambda meta: meta.pop(CHECKSUM_FIELD))
-    with pytest.raises(TrialLogError, match=r"trial log '.*' holds no checksum \(meta "
-                                            r"'checksum'\).*; run the trial again"):
+    with pytest.raises(TrialLogError) as refused:
         load_trial_log(saved_log)
+    assert_unchecksummed_refusal(one_line_of(refused.value), saved_log)
+
+
+def test_a_reused_log_without_a_checksum_is_refused_saying_to_delete_it(saved_log, monkeypatch):
+    """A campaign keeps its runs' logs (LOGS_DIR/<label>.npz) and reads one there instead of
+    simulating: an earlier version's log is refused there with the words that get past it."""
+    from tegrasp_drake.recording import campaign
+    _edited_by_hand(saved_log, lambda meta: meta.pop(CHECKSUM_FIELD))
+    monkeypatch.setattr(campaign, "run_ideal_grasp",
+                        lambda *a, **k: pytest.fail("the reused log was simulated again"))
+    run = campaign.CampaignRun("trial", LoadScenario(name="box"))
+    with pytest.raises(TrialLogError) as refused:
+        campaign.simulate_run(run, log_path=campaign.run_log_path(saved_log.parent, run))
+    assert_unchecksummed_refusal(one_line_of(refused.value), saved_log)
+
+
+def assert_unchecksummed_refusal(text: str, path) -> None:
+    assert text.startswith(f"trial log '{path}' was written by an earlier version of the "
+                           "package, without a checksum (meta 'checksum')"), text
+    assert f"delete '{path}'" in text and "run the trial again to replace it" in text, text
 
 
 def test_a_loaded_log_saved_again_carries_the_checksum_of_its_new_contents(saved_log, tmp_path):

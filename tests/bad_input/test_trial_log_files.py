@@ -20,9 +20,10 @@ from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.scenario.scenario import LoadScenario, scenario_from_yaml, scenario_to_yaml
 from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, FORMAT_VERSION, TrialLogError,
                                                    load_trial_log)
-from tests.bad_input.probes import (META, SCENARIO, TIMELINE, assert_one_line_error, log_refusal,
-                                    meta_refused, one_line_of, refused_log, refused_meta,
-                                    result_refused, run_cli, run_probe, trial_log, trial_log_with)
+from tests.bad_input.probes import (META, SCENARIO, TIMELINE, assert_one_line_error,
+                                    deny_reading, log_refusal, meta_refused, one_line_of,
+                                    refused_log, refused_meta, result_refused, run_cli,
+                                    run_probe, trial_log, trial_log_with)
 from tests.fake_trials import small_trial_log, whole_result
 from tests.trial_log_contents import read_trial_log_contents, write_trial_log_contents
 
@@ -470,17 +471,10 @@ def test_a_trial_log_the_reader_refuses_is_never_saved(spoil, expected, tmp_path
 # Rule: a trial log this user cannot open (another user's: simulated, as root ignores modes)
 # is said to be one that cannot be read, never a truncated or corrupt one to run again.
 def test_a_trial_log_that_cannot_be_read_is_not_called_corrupt(tmp_path, capfd, monkeypatch):
-    import os
     from tegrasp_drake.scenario import trial_log_file
     path = tmp_path / "trial.npz"
     trial_log(path)
-    real_open = os.open
-
-    def denied(name, *args, **kwargs):
-        if str(name) == str(path):
-            raise PermissionError(13, "Permission denied", str(name))
-        return real_open(name, *args, **kwargs)
-    monkeypatch.setattr(trial_log_file.os, "open", denied)
+    deny_reading(monkeypatch, trial_log_file.os, "open", path)
     code, text = run_cli(["plot", "trial", str(path), "--out", str(tmp_path / "x.png")], capfd)
     assert_one_line_error(code, text, f"trial log '{path}' cannot be read (Permission denied)")
     assert "corrupt" not in text and "run the trial again" not in text
