@@ -160,8 +160,8 @@ MAX_CHANNEL_LENGTH = 256
 MAX_LCM_MESSAGE_BYTES = 1 << 28
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
 # The largest run log a replay reads, set by what the replay holds. Reading streams (a
-# FileWindow, tactile messages decoded into TactileColumns: about 0.2 kB a message at the
-# peak), but the matcher's re-run does not: its TrajectorySource holds the whole tactile
+# FileWindow, tactile messages decoded into TactileColumns: about 0.12 kB a message at the
+# peak for 800,000), but the matcher's re-run does not: its TrajectorySource holds the whole tactile
 # stream as a PiecewisePolynomial (about 0.9 kB a tick) and its loggers every tick's
 # outputs, about 1.35 kB a tactile tick in all (python -m benchmarks.replay_memory:
 # 135 MB above the imports' 216 MB for 100,000 ticks). A TEGRASP_TACTILE event is 329
