@@ -160,17 +160,17 @@ MAX_CHANNEL_LENGTH = 256
 MAX_LCM_MESSAGE_BYTES = 1 << 28
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
 # The largest run log a replay reads, set by what the replay holds. Reading streams (a
-# FileWindow, tactile messages decoded into TactileColumns: about 0.12 kB a message at the
-# peak for 800,000), but the matcher's re-run does not: its TrajectorySource holds the whole tactile
+# FileWindow; tactile messages decoded into TactileColumns, about 0.12 kB a message at the
+# peak), but the matcher's re-run does not: its TrajectorySource holds the whole tactile
 # stream as a PiecewisePolynomial (about 0.9 kB a tick) and its loggers every tick's
-# outputs, about 1.35 kB a tactile tick in all (python -m benchmarks.replay_memory:
-# 135 MB above the imports' 216 MB for 100,000 ticks). A TEGRASP_TACTILE event is 329
-# bytes, so a replay holds about 4 times the log's tactile bytes. A 10-minute run (hardware
-# --duration's limit) logs about 230 MB (1 kHz of tactile events, 100 Hz each of 306-byte
-# arm statuses and 163-byte commands: 377 kB/s), 600,000 ticks, about 0.8 GB to replay;
-# 256 MiB takes it with room, and bounds what a file can make a replay hold: about 1.1 GB
-# for one of tactile messages only (816,000 ticks), about 1.5 GB for one of arm statuses
-# only (decoded as messages, 1.4 kB each).
+# outputs, about 1.3 kB a tactile tick in all (python -m benchmarks.replay_memory, 800,000
+# ticks: 1.28 GB of memory at the most, 0.24 GB of it the imports). A TEGRASP_TACTILE event
+# is 329 bytes, so a replay holds about 4 times the log's tactile bytes. A 10-minute run
+# (hardware --duration's limit) logs about 230 MB (1 kHz of tactile events, 100 Hz each of
+# 306-byte arm statuses and 163-byte commands: 377 kB/s), 600,000 ticks, about 0.8 GB to
+# replay; 256 MiB takes it with room, and bounds what a file can make a replay hold: about
+# 1.1 GB for one of tactile messages only (816,000 ticks), about 1.5 GB for one of arm
+# statuses only (decoded as messages, 1.4 kB each).
 MAX_RUN_LOG_BYTES = 2**28
 # The largest LCM log scan_lcm_log counts (a run's own log, BusLogWriter.messages): it holds
 # the file's bytes and its events, not a replay.
