@@ -679,12 +679,11 @@ def file_problem(path, devices=READABLE_DEVICES) -> str | None:
     return _kind_problem(mode, path, devices)
 
 
-def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
-    """The bytes of the file at `path`: InputTooLargeError past `limit`; NotAFileError for a
-    folder, FIFO, socket or device (but `devices`), checked before a byte is read. A regular
-    file larger than `limit` is refused from its size (fstat of the file opened) before a
-    byte is read, so a 3 GB file costs no 1 GB read to refuse; what fstat cannot size (one
-    of `devices`) or a file that grows while read is still held to `limit` by the read."""
+def open_bounded(path, limit: int, devices=READABLE_DEVICES):
+    """The file at `path` opened for reading (a binary stream) and its size [bytes] from
+    fstat (None for one of `devices`, which fstat cannot size): InputTooLargeError for a
+    regular file larger than `limit`; NotAFileError for a folder, FIFO, socket or device (but
+    `devices`); both checked before a byte is read."""
     descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
         status = os.fstat(descriptor)
@@ -694,19 +693,29 @@ def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
         if stat.S_ISREG(status.st_mode) and status.st_size > limit:
             raise InputTooLargeError(path, limit)
         os.set_blocking(descriptor, True)
-        # A regular file is read with a buffer of its size, not of `limit` (read(n) allocates
-        # n bytes first: 1 GiB for a run log of 1 MB); one that grew since fstat is read on to
-        # the bound.
-        wanted = limit + 1
-        first = min(wanted, status.st_size + 1) if stat.S_ISREG(status.st_mode) else wanted
-        with os.fdopen(descriptor, "rb") as stream:
-            descriptor = None
-            data = stream.read(first)
-            if len(data) == first < wanted:
-                data += stream.read(wanted - first)
-    finally:
-        if descriptor is not None:
-            os.close(descriptor)
+        stream = os.fdopen(descriptor, "rb")
+    except BaseException:
+        os.close(descriptor)
+        raise
+    return stream, status.st_size if stat.S_ISREG(status.st_mode) else None
+
+
+def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
+    """The bytes of the file at `path`: InputTooLargeError past `limit`; NotAFileError for a
+    folder, FIFO, socket or device (but `devices`), checked before a byte is read. A regular
+    file larger than `limit` is refused from its size (fstat of the file opened) before a
+    byte is read, so a 3 GB file costs no 1 GB read to refuse; what fstat cannot size (one
+    of `devices`) or a file that grows while read is still held to `limit` by the read."""
+    stream, size = open_bounded(path, limit, devices)
+    # A regular file is read with a buffer of its size, not of `limit` (read(n) allocates
+    # n bytes first: 1 GiB for a run log of 1 MB); one that grew since fstat is read on to
+    # the bound.
+    wanted = limit + 1
+    first = min(wanted, size + 1) if size is not None else wanted
+    with stream:
+        data = stream.read(first)
+        if len(data) == first < wanted:
+            data += stream.read(wanted - first)
     if len(data) > limit:
         raise InputTooLargeError(path, limit)
     return data

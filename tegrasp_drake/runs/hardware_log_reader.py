@@ -15,19 +15,19 @@ from drake import lcmt_jaco_command, lcmt_jaco_status
 
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 from tegrasp_drake.control.grasp_modes import WORDS, Mode, Transition, words_problem
-from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import check_ranges, field_range
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError,
                                      InputTooLargeError, JsonValueError, file_problem,
-                                     load_json, one_line, read_bounded)
+                                     load_json, one_line, open_bounded, read_bounded)
+from tegrasp_drake.rig.file_window import FileWindow
 from tegrasp_drake.hardware.config import HardwareStationConfig
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
 from tegrasp_drake.hardware.device_fault import DEVICE_FAULT, DEVICES, KINDS, NO_CODE
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TACTILE_PUBLISH_PERIOD,
-    TRANSITION_CHANNEL, tactile_arrays)
+    TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     COUNT_MAX, MAX_TAXEL_GAIN_N_PER_COUNT, PIEZO_INPUT_V, PadCalibration)
 from tegrasp_drake.hardware.myrio.tactile_frame import RESTART_RUN
@@ -36,6 +36,7 @@ from tegrasp_drake.hardware.jaco.jaco_lcm import (
     check_jaco_status_message)
 from tegrasp_drake.hardware.message_boundary import RejectedMessage
 from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.runs.tactile_log_columns import VALUE_CHECK_COLUMNS, TactileColumns
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.typed_yaml import ConfigError, load_typed, parse_yaml
 from tegrasp_drake.robotiq.units import BYTE_MAX
@@ -74,7 +75,9 @@ class RunLog:
     """What a hardware run's LCM log holds (module docstring)."""
     path: pathlib.Path
     run_info: lcmt_tegrasp_run_info | None
-    tactile: dict           # device_log_messages.tactile_arrays, and wall_us: reception
+    tactile: dict           # TEGRASP_TACTILE's kept messages, a row each: t, device_t [s];
+    #                         sa (n, 2) [N], ra (n, 2) [m/s^2]; stale, zeroing; arrival_s,
+    #                         tick_s [s, host monotonic]; wall_us: reception [us]
     transitions: list       # [{t, from, to, trigger, reason}]
     faults: list            # lcmt_tegrasp_fault
     gripper: list           # lcmt_tegrasp_gripper
@@ -142,13 +145,8 @@ class RunLog:
 
     def _channels(self, t: np.ndarray, rows: np.ndarray) -> TactileTrial:
         """The SA and RA channels of the tactile messages `rows`, at their times `t` [s]."""
-        taxels = self.tactile["taxels"][rows]
-        acceleration = self.tactile["pad_acceleration"][rows]
-        sa = np.column_stack([taxels[:, :TAXELS_PER_PAD].sum(axis=1),
-                              taxels[:, TAXELS_PER_PAD:].sum(axis=1)])
-        ra = np.column_stack([np.linalg.norm(acceleration[:, :3], axis=1),
-                              np.linalg.norm(acceleration[:, 3:], axis=1)])
-        return TactileTrial(t_sa=t, sa=sa, t_ra=t, ra=ra, transition_times={})
+        return TactileTrial(t_sa=t, sa=self.tactile["sa"][rows], t_ra=t,
+                            ra=self.tactile["ra"][rows], transition_times={})
 
 
 LCM_SYNC = 0xEDA1DA01
@@ -161,11 +159,22 @@ MAX_CHANNEL_LENGTH = 256
 # message: the header is skipped as corrupt bytes, not read as a message cut off at the end.
 MAX_LCM_MESSAGE_BYTES = 1 << 28
 MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged ones
-# The largest run log read into memory: a 10-minute run (hardware --duration's limit) logs
-# about 230 MB (1 kHz of 330-byte TEGRASP_TACTILE events, 100 Hz each of 306-byte arm statuses
-# and 163-byte commands: 377 kB/s); 1 GiB bounds what a file can make the reader hold. Reading
-# holds about 1 kB a message (read_run_log), so 1 GiB of tactile events is about 3 GB.
-MAX_RUN_LOG_BYTES = 2**30
+# The largest run log a replay reads, set by what the replay holds. Reading streams (a
+# FileWindow; tactile messages decoded into TactileColumns, about 0.12 kB a message at the
+# peak), but the matcher's re-run does not: its TrajectorySource holds the whole tactile
+# stream as a PiecewisePolynomial (about 0.9 kB a tick) and its loggers every tick's
+# outputs, about 1.3 kB a tactile tick in all (python -m benchmarks.replay_memory, 800,000
+# ticks: 1.28 GB of memory at the most, 0.24 GB of it the imports). A TEGRASP_TACTILE event
+# is 329 bytes, so a replay holds about 4 times the log's tactile bytes. A 10-minute run
+# (hardware --duration's limit) logs about 230 MB (1 kHz of tactile events, 100 Hz each of
+# 306-byte arm statuses and 163-byte commands: 377 kB/s), 600,000 ticks, about 0.8 GB to
+# replay; 256 MiB takes it with room, and bounds what a file can make a replay hold: about
+# 1.1 GB for one of tactile messages only (816,000 ticks), about 1.5 GB for one of arm
+# statuses only (decoded as messages, 1.4 kB each).
+MAX_RUN_LOG_BYTES = 2**28
+# The largest LCM log scan_lcm_log counts (a run's own log, BusLogWriter.messages): it holds
+# the file's bytes and its events, not a replay.
+MAX_SCANNED_LOG_BYTES = 2**30
 
 
 def too_large_run_log_problem(path) -> str:
@@ -176,16 +185,18 @@ def too_large_run_log_problem(path) -> str:
         size = f"is {os.stat(path).st_size} bytes, "
     except OSError:
         size = ""
-    return (f"run log '{path}' {size}more than the {MAX_RUN_LOG_BYTES} bytes (1 GiB) a replay "
-            "reads (a 10-minute run logs about 230 MB); replay a part of it, e.g. its first "
+    return (f"run log '{path}' {size}more than the {MAX_RUN_LOG_BYTES} bytes (256 MiB) a "
+            "replay reads (a 10-minute run logs about 230 MB); replay a part of it, e.g. its first "
             f"10 minutes: lcm-logfilter -c '.*' -e 600 '{path}' part.lcmlog, or a shorter run")
 
 
-def _plausible_header(data: bytes, position: int) -> bool:
-    """Whether an LCM event header that fits in `data` starts at `position`."""
-    if len(data) - position < _EVENT_HEADER.size:
+def _plausible_header(data, position: int) -> bool:
+    """Whether an LCM event header that fits in `data` (bytes or a FileWindow) starts at
+    `position`."""
+    header = data[position:position + _EVENT_HEADER.size]
+    if len(header) < _EVENT_HEADER.size:
         return False
-    word, _, _, channel_length, data_length = _EVENT_HEADER.unpack_from(data, position)
+    word, _, _, channel_length, data_length = _EVENT_HEADER.unpack(header)
     if not (word == LCM_SYNC and 0 < channel_length <= MAX_CHANNEL_LENGTH
             and data_length <= MAX_LCM_MESSAGE_BYTES):
         return False  # lengths first: the channel is sliced only once it is known short
@@ -193,7 +204,7 @@ def _plausible_header(data: bytes, position: int) -> bool:
     return len(channel) == channel_length and all(32 < c < 127 for c in channel)
 
 
-def _next_header(data: bytes, start: int) -> int:
+def _next_header(data, start: int) -> int:
     """Position of the first plausible event header at or after `start`, or -1."""
     sync = LCM_SYNC.to_bytes(4, "big")
     position = data.find(sync, start)
@@ -202,11 +213,11 @@ def _next_header(data: bytes, start: int) -> int:
     return position
 
 
-def _next_event_number(data: bytes, position: int) -> int | None:
+def _next_event_number(data, position: int) -> int | None:
     """The event number of the header at `position` (None at the end or if none is)."""
     if not _plausible_header(data, position):
         return None
-    return _EVENT_HEADER.unpack_from(data, position)[1]
+    return _EVENT_HEADER.unpack(data[position:position + _EVENT_HEADER.size])[1]
 
 
 # The receive times of a log (its LCM event timestamps: when lcm-logger got each message,
@@ -240,117 +251,151 @@ def _duration_text(microseconds: int) -> str:
     return f"{seconds:.3g} s"
 
 
-def receive_time_damage(timestamps: list[int]) -> list[str]:
+# Receive times within this of 0 [us] have steps that int64 holds exactly (corrupt bytes can
+# make a timestamp anything an int64 holds: their steps are taken as Python integers).
+_EXACT_STEP_BOUND_US = 2**61
+
+
+def _receive_steps(timestamps) -> np.ndarray:
+    """The steps [us] between consecutive receive times, exactly (int64, else objects)."""
+    times = np.asarray(timestamps, dtype=np.int64)
+    if len(times) and max(-int(times.min()), int(times.max())) >= _EXACT_STEP_BOUND_US:
+        times = times.astype(object)
+    return np.diff(times)
+
+
+def receive_time_damage(timestamps) -> list[str]:
     """What is wrong with a log's receive times (the events' timestamps [us], in file order),
     in words: steps back beyond MAX_RECEIVE_STEP_BACK_US and gaps beyond MAX_RECEIVE_GAP_US,
     each said with its count and the largest one's place. The messages themselves are kept
     (their contents are checked on their own); their receive times are what is wrong."""
-    steps = [later - earlier for earlier, later in zip(timestamps, timestamps[1:])]
+    steps = _receive_steps(timestamps)
     total, damage = len(timestamps), []
     for name, wrong, why in (
-            ("jump forward", [k for k, step in enumerate(steps) if step > MAX_RECEIVE_GAP_US],
+            ("jump forward", np.flatnonzero(steps > MAX_RECEIVE_GAP_US),
              f"longer than a run's bus is ever silent, {MAX_RECEIVE_GAP_US * 1e-6:g} s"),
-            ("go back", [k for k, step in enumerate(steps) if step < -MAX_RECEIVE_STEP_BACK_US],
+            ("go back", np.flatnonzero(steps < -MAX_RECEIVE_STEP_BACK_US),
              f"lcm-logger writes messages as it receives them; two arriving together swap "
              f"by less than {_duration_text(MAX_RECEIVE_STEP_BACK_US)}")):
-        if not wrong:
+        if not len(wrong):
             continue
-        largest = max(wrong, key=lambda k: abs(steps[k]))
+        largest = int(wrong[np.argmax(abs(steps[wrong]))])  # the first of the largest
         damage.append(
             f"the receive times (LCM event timestamps) {name} in {len(wrong)} place(s), the "
-            f"largest by {_duration_text(abs(steps[largest]))} between messages {largest + 1} "
-            f"and {largest + 2} of {total} ({why}): the log was edited or joined, or has "
-            "corrupt bytes; the messages are kept, their receive times are wrong")
+            f"largest by {_duration_text(abs(int(steps[largest])))} between messages "
+            f"{largest + 1} and {largest + 2} of {total} ({why}): the log was edited or "
+            "joined, or has corrupt bytes; the messages are kept, their receive times are "
+            "wrong")
     return damage
 
 
 def scan_lcm_log(path) -> tuple[list, list[str]]:
     """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
-    words: bytes that are no events (skipped to the next header), event numbers missing or
-    not following the one before, an event cut short at the end, receive times that cannot
-    be one run's (receive_time_damage). LCM's format: per event a big-endian header (sync
-    0xEDA1DA01, number, timestamp, channel and data lengths), channel, data. lcm-logger
-    numbers a log's events from 0, so the first one read is checked against 0 as each
-    later one is against the one before: a corrupt first frame is counted as lost as one
-    further on is. A length is never allocated: events are slices of the bytes read."""
-    return _scan_lcm_bytes(read_bounded(path, MAX_RUN_LOG_BYTES))
+    words (LcmEventScan), the file read whole (read_bounded)."""
+    return _scan_lcm_bytes(read_bounded(path, MAX_SCANNED_LOG_BYTES))
 
 
-def _not_lcm_log_problem(data: bytes) -> str | None:
-    """Why bytes that hold no LCM event are no LCM log at all, in words that follow "run log
-    'FILE' ": empty, or no event's sync word anywhere (a text file, an image), unlike a log
-    whose only event is corrupt or cut off (its bytes start as the sync word does); or
-    None."""
-    if not data:
+def _not_lcm_log_problem(data) -> str | None:
+    """Why bytes (bytes or a FileWindow) that hold no LCM event are no LCM log at all, in
+    words that follow "run log 'FILE' ": empty, or no event's sync word anywhere (a text
+    file, an image), unlike a log whose only event is corrupt or cut off (its bytes start as
+    the sync word does); or None."""
+    if not len(data):
         return "is empty (0 bytes), not an LCM log"
-    if LCM_LOG_START in data or LCM_LOG_START.startswith(data):
+    if data.find(LCM_LOG_START, 0) >= 0 or (len(data) < len(LCM_LOG_START)
+                                            and LCM_LOG_START.startswith(data[0:len(data)])):
         return None
     return (f"is not an LCM log: its {len(data)} bytes hold no LCM event's sync word "
             f"0x{LCM_SYNC:08X}")
 
 
-def _scan_lcm_bytes(data: bytes) -> tuple[list, list[str]]:
-    """scan_lcm_log's events and damage of an LCM log's bytes."""
-    events = []
-    channels = {}  # a channel's name as bytes -> one str for all its events
-    corrupt_regions = corrupt_bytes = lost = 0
-    renumbered = []  # file positions of events whose numbers go back or are damaged
-    truncated = None
-    position, expected_number = 0, 0
-    while position < len(data):
-        plausible = _plausible_header(data, position)
-        end = None
-        if plausible:
-            _, number, timestamp, channel_length, data_length = _EVENT_HEADER.unpack_from(
-                data, position)
-            end = position + _EVENT_HEADER.size + channel_length + data_length
-            if end > len(data):
-                following = _next_header(data, position + 1)
-                if following < 0:
-                    truncated = (f"the last message is cut off after {len(data) - position} "
-                                 f"of its {end - position} bytes")
+class LcmEventScan:
+    """The events of an LCM log's bytes (bytes, or a FileWindow of its file), one at a time:
+    iterating yields (timestamp [us], channel, data), and once done `damage` holds what was
+    lost in words: bytes that are no events (skipped to the next header), event numbers
+    missing or not following the one before, an event cut short at the end, receive times
+    that cannot be one run's (receive_time_damage). LCM's format: per event a big-endian
+    header (sync 0xEDA1DA01, number, timestamp, channel and data lengths), channel, data.
+    lcm-logger numbers a log's events from 0, so the first one read is checked against 0 as
+    each later one is against the one before: a corrupt first frame is counted as lost as
+    one further on is. A length is never allocated: an event's data is a slice of the bytes,
+    so the scan holds one event and the receive times (8 bytes an event) at a time."""
+
+    def __init__(self, data):
+        self.data = data
+        self.damage = None
+
+    def __iter__(self):
+        data = self.data
+        timestamps = array.array("q")
+        channels = {}  # a channel's name as bytes -> one str for all its events
+        corrupt_regions = corrupt_bytes = lost = 0
+        renumbered = []  # file positions of events whose numbers go back or are damaged
+        truncated = None
+        position, expected_number = 0, 0
+        size = len(data)
+        while position < size:
+            plausible = _plausible_header(data, position)
+            end = None
+            if plausible:
+                _, number, timestamp, channel_length, data_length = _EVENT_HEADER.unpack(
+                    data[position:position + _EVENT_HEADER.size])
+                end = position + _EVENT_HEADER.size + channel_length + data_length
+                if end > size:
+                    following = _next_header(data, position + 1)
+                    if following < 0:
+                        truncated = (f"the last message is cut off after {size - position} "
+                                     f"of its {end - position} bytes")
+                        break
+                    plausible = False  # a damaged length: the next event header follows
+            if not plausible:
+                if size - position < _EVENT_HEADER.size and not corrupt_regions:
+                    truncated = f"the last {size - position} bytes are a cut-off header"
                     break
-                plausible = False  # a damaged length: the next event header follows
-        if not plausible:
-            if len(data) - position < _EVENT_HEADER.size and not corrupt_regions:
-                truncated = f"the last {len(data) - position} bytes are a cut-off header"
-                break
-            following = _next_header(data, position + 1)
-            stop = len(data) if following < 0 else following
-            corrupt_regions += 1
-            corrupt_bytes += stop - position
-            position = stop
-            continue
-        if number != expected_number:
-            # the next event's number confirms this one's: a gap (messages lost) or a step
-            # back (logs spliced), followed; else a damaged number, counted as the next one
-            confirmed = _next_event_number(data, end) in (None, number + 1)
-            if confirmed and 0 < number - expected_number < MAX_EVENT_GAP:
-                lost += number - expected_number
-            else:
-                renumbered.append(position)
-                if not (confirmed and number < expected_number):
-                    number = expected_number
-        expected_number = number + 1
-        start = position + _EVENT_HEADER.size
-        name = data[start:start + channel_length]
-        channel = channels.get(name) or channels.setdefault(name, name.decode("ascii"))
-        events.append((timestamp, channel, data[start + channel_length:end]))
-        position = end
-    damage = []
-    if corrupt_regions:
-        damage.append(f"{corrupt_bytes} corrupt bytes in {corrupt_regions} place(s) skipped")
-    if lost:
-        damage.append(f"{lost} message(s) lost (gaps in the event numbers)")
-    if renumbered:
-        damage.append(
-            f"{len(renumbered)} event number(s) do not follow the one before (the first at "
-            f"byte {renumbered[0]}; lcm-logger numbers its events 0, 1, 2, ...: logs spliced "
-            "together, or corrupt bytes); the messages are kept")
-    if truncated:
-        damage.append(f"truncated: {truncated}; what followed is lost")
-    damage += receive_time_damage([timestamp for timestamp, _, _ in events])
-    return events, damage
+                following = _next_header(data, position + 1)
+                stop = size if following < 0 else following
+                corrupt_regions += 1
+                corrupt_bytes += stop - position
+                position = stop
+                continue
+            if number != expected_number:
+                # the next event's number confirms this one's: a gap (messages lost) or a
+                # step back (logs spliced), followed; else a damaged number, counted as the
+                # next one
+                confirmed = _next_event_number(data, end) in (None, number + 1)
+                if confirmed and 0 < number - expected_number < MAX_EVENT_GAP:
+                    lost += number - expected_number
+                else:
+                    renumbered.append(position)
+                    if not (confirmed and number < expected_number):
+                        number = expected_number
+            expected_number = number + 1
+            start = position + _EVENT_HEADER.size
+            name = data[start:start + channel_length]
+            channel = channels.get(name) or channels.setdefault(name, name.decode("ascii"))
+            timestamps.append(timestamp)
+            yield timestamp, channel, data[start + channel_length:end]
+            position = end
+        damage = []
+        if corrupt_regions:
+            damage.append(f"{corrupt_bytes} corrupt bytes in {corrupt_regions} place(s) skipped")
+        if lost:
+            damage.append(f"{lost} message(s) lost (gaps in the event numbers)")
+        if renumbered:
+            damage.append(
+                f"{len(renumbered)} event number(s) do not follow the one before (the first "
+                f"at byte {renumbered[0]}; lcm-logger numbers its events 0, 1, 2, ...: logs "
+                "spliced together, or corrupt bytes); the messages are kept")
+        if truncated:
+            damage.append(f"truncated: {truncated}; what followed is lost")
+        self.damage = damage + receive_time_damage(timestamps)
+
+
+def _scan_lcm_bytes(data) -> tuple[list, list[str]]:
+    """scan_lcm_log's events and damage of an LCM log's bytes, all held (LcmEventScan)."""
+    scan = LcmEventScan(data)
+    events = list(scan)
+    return events, scan.damage
 
 
 TIME_NEIGHBOURS = 5  # messages on each side whose median time a message's is compared with
@@ -578,55 +623,55 @@ def pad_acceleration_bound(scenario) -> float:
     return max(sensor_bounds(scenario, 0.0).pad_acceleration, device)
 
 
-def compact_tactile_message(message) -> None:
-    """Holds the float fields of a decoded lcmt_tegrasp_tactile as array('d') in place of the
-    tuples of Python floats the decoder makes: 30 values, 24 bytes of a float object each and
-    a tuple's slots (about 1.2 kB a message) become 8 bytes each (about 0.5 kB), for the
-    hundreds of thousands of messages of a long log (1 kHz). Same values, lengths, order."""
-    for field in ("left_taxel_forces", "right_taxel_forces", "left_pad_acceleration",
-                  "right_pad_acceleration"):
-        setattr(message, field, array.array("d", getattr(message, field)))
+# Rows of sliding windows whose medians are taken at once (a block's copy: 11 x 8 bytes each).
+_MEDIAN_BLOCK_ROWS = 65536
 
 
-def _plausible_tactile(messages: list, taxel_range: tuple[float, float],
-                       acceleration_bound: float) -> tuple[list, int, int]:
-    """The (wall time, lcmt_tegrasp_tactile) messages whose values and times can be real, how
-    many values were not and how many times. LCM logs carry no checksum, so a flipped byte
-    shows only as an impossible value: not finite, a taxel force outside `taxel_range` [N]
-    (taxel_force_range), an acceleration beyond `acceleration_bound` [m/s^2]
-    (pad_acceleration_bound), not 12 taxels; or as a time (utime) before the previous
-    message's, or more than MAX_TIME_OUTLIER_S from its neighbours' median (1 ms ticks) while
-    the log's receive time [us] did not move with it (a silence moves both clocks)."""
+def _neighbour_medians(values: np.ndarray) -> np.ndarray:
+    """Each value's neighbourhood's median: of values[k - TIME_NEIGHBOURS : k +
+    TIME_NEIGHBOURS + 1], cut at the ends."""
+    n, reach = len(values), TIME_NEIGHBOURS
+    medians = np.empty(n)
+    width = 2 * reach + 1
+    if n >= width:
+        windows = np.lib.stride_tricks.sliding_window_view(values, width)
+        for start in range(0, len(windows), _MEDIAN_BLOCK_ROWS):
+            block = windows[start:start + _MEDIAN_BLOCK_ROWS]
+            medians[start + reach:start + reach + len(block)] = np.median(block, axis=1)
+    for k in [*range(min(reach, n)), *range(max(n - reach, min(reach, n)), n)]:
+        medians[k] = np.median(values[max(0, k - reach):k + reach + 1])
+    return medians
+
+
+def tactile_value_check(columns: dict, taxel_range: tuple[float, float],
+                        acceleration_bound: float) -> np.ndarray:
+    """Which decoded TEGRASP_TACTILE messages (TactileColumns.columns) hold values that can
+    be real: all finite, every taxel force within `taxel_range` [N] (taxel_force_range),
+    every acceleration within `acceleration_bound` [m/s^2] (pad_acceleration_bound), 12
+    taxels a pad (a message of another count is held not finite)."""
     low, high = taxel_range
-    values_ok = []
-    for _, message in messages:
-        forces = np.array([*message.left_taxel_forces, *message.right_taxel_forces])
-        accelerations = np.array([*message.left_pad_acceleration,
-                                  *message.right_pad_acceleration])
-        values_ok.append(len(message.left_taxel_forces) == TAXELS_PER_PAD
-                         and len(message.right_taxel_forces) == TAXELS_PER_PAD
-                         and bool(np.all(np.isfinite(forces)))
-                         and bool(np.all(np.isfinite(accelerations)))
-                         and bool(np.all((forces >= low) & (forces <= high)))
-                         and float(np.max(np.abs(accelerations), initial=0.0))
-                         <= acceleration_bound)
-    times = np.array([message.utime * 1e-6 for _, message in messages])
-    offsets = times - np.array([wall * 1e-6 for wall, _ in messages])  # [s] utime - receive
+    with np.errstate(invalid="ignore"):
+        return (columns["finite"] & (columns["taxel_low"] >= low)
+                & (columns["taxel_high"] <= high)
+                & (columns["acceleration_peak"] <= acceleration_bound))
 
-    def outlier(values, k) -> bool:
-        neighbours = values[max(0, k - TIME_NEIGHBOURS):k + TIME_NEIGHBOURS + 1]
-        return abs(values[k] - np.median(neighbours)) > MAX_TIME_OUTLIER_S
 
-    kept, last, mistimed = [], -np.inf, 0
-    for k, (wall, message) in enumerate(messages):
-        if not values_ok[k]:
-            continue
-        if times[k] < last or (outlier(times, k) and outlier(offsets, k)):
-            mistimed += 1
-            continue
-        kept.append((wall, message))
-        last = times[k]
-    return kept, values_ok.count(False), mistimed
+def tactile_time_check(utime: np.ndarray, wall_us: np.ndarray,
+                       values_ok: np.ndarray) -> np.ndarray:
+    """Which of the messages whose values are real (`values_ok`) carry a time (utime [us])
+    that can be: not before the previous kept message's, and not more than
+    MAX_TIME_OUTLIER_S from its neighbours' median (1 ms ticks, every decoded message
+    counted) while the log's receive time (`wall_us` [us]) moved with it (a silence moves
+    both clocks). A kept message's time is at least every earlier candidate's (a candidate
+    left out is earlier than one kept before it), so the check needs no loop."""
+    times = utime * 1e-6
+    offsets = times - wall_us * 1e-6  # [s] utime - receive
+    outlier = ((np.abs(times - _neighbour_medians(times)) > MAX_TIME_OUTLIER_S)
+               & (np.abs(offsets - _neighbour_medians(offsets)) > MAX_TIME_OUTLIER_S))
+    candidate = values_ok & ~outlier
+    latest = np.maximum.accumulate(np.where(candidate, times, -np.inf))
+    before = np.concatenate([[-np.inf], latest[:-1]])
+    return candidate & (times >= before)
 
 
 def device_time_damage(device_utimes) -> str | None:
@@ -828,6 +873,22 @@ def unfired_trigger_damage(transitions: list, run_info) -> list[str]:
             "kept in the timeline"]
 
 
+def _kept_tactile(columns: dict, kept: np.ndarray) -> dict:
+    """RunLog.tactile of the rows `kept` of TactileColumns.columns (and device_utime [us],
+    for device_time_damage), each column cut in turn, so that the columns and their cut
+    copies are never all held at once."""
+    whole = bool(kept.all())
+    tactile = {}
+    for name in ("utime", "device_utime", "sa", "ra", "stale", "zeroing", "arrival_s",
+                 "tick_s", "wall_us"):
+        column = columns.pop(name)
+        tactile[name] = column if whole else column[kept]
+        del column
+    tactile["t"] = tactile.pop("utime") * 1e-6
+    tactile["device_t"] = tactile["device_utime"] * 1e-6
+    return tactile
+
+
 def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
@@ -839,37 +900,44 @@ def read_run_log(path) -> RunLog:
     if problem:
         raise RunLogError(f"run log '{path}' {problem} (a run "
                           "log is the file `tegrasp hardware --log FILE` writes)")
-    decoded = {channel: [] for channel in MESSAGE_TYPES}
-    counts = {}
+    decoded = {channel: [] for channel in MESSAGE_TYPES if channel != TACTILE_CHANNEL}
+    tactile_columns = TactileColumns()
+    counts, undecodable = {}, {}
     try:
-        data = read_bounded(path, MAX_RUN_LOG_BYTES)
+        stream, size = open_bounded(path, MAX_RUN_LOG_BYTES, devices=())
     except InputTooLargeError:  # from the file's size, before a byte is read
         raise RunLogError(too_large_run_log_problem(path)) from None
     except OSError as e:
         raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
-    events, damage = _scan_lcm_bytes(data)
-    not_a_log = None if events else _not_lcm_log_problem(data)
+    with stream:
+        data = FileWindow(stream, size)
+        scan = LcmEventScan(data)
+        try:
+            for timestamp, channel, message_bytes in scan:
+                counts[channel] = counts.get(channel, 0) + 1
+                if channel == TACTILE_CHANNEL:
+                    decodes = tactile_columns.add(timestamp, message_bytes)
+                elif channel in MESSAGE_TYPES:
+                    try:
+                        decoded[channel].append(
+                            (timestamp, MESSAGE_TYPES[channel].decode(message_bytes)))
+                        decodes = True
+                    except (ValueError, struct.error, UnicodeDecodeError, IndexError):
+                        decodes = False
+                else:
+                    decodes = True
+                if not decodes:
+                    undecodable[channel] = undecodable.get(channel, 0) + 1
+            damage = scan.damage
+            not_a_log = None if counts else _not_lcm_log_problem(data)
+        except OSError as e:
+            raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
     if not_a_log:
         raise RunLogError(f"run log '{path}' {not_a_log}; give a log written by `tegrasp "
                           "hardware --log FILE` or lcm-logger")
-    if not events:
+    if not counts:
         raise RunLogError(f"run log '{path}' holds no LCM message"
                           + (f" ({'; '.join(damage)})" if damage else ""))
-    undecodable = {}
-    del data  # the file's bytes: the events hold their own
-    for k, (timestamp, channel, data) in enumerate(events):
-        events[k] = None  # each event's bytes freed once decoded: they and the messages
-        counts[channel] = counts.get(channel, 0) + 1  # are never all held at once
-        if channel in MESSAGE_TYPES:
-            try:
-                message = MESSAGE_TYPES[channel].decode(data)
-            except (ValueError, struct.error, UnicodeDecodeError, IndexError):
-                undecodable[channel] = undecodable.get(channel, 0) + 1
-                continue
-            if channel == TACTILE_CHANNEL:
-                compact_tactile_message(message)
-            decoded[channel].append((timestamp, message))
-    del events
     damage += [f"{n} message(s) on {channel} do not decode as {MESSAGE_TYPES[channel].__name__}"
                " (corrupt bytes); skipped" for channel, n in sorted(undecodable.items())]
     for channel, check, what in ((JACO_STATUS_CHANNEL, check_jaco_status_message, "statuses"),
@@ -908,8 +976,13 @@ def read_run_log(path) -> RunLog:
         damage.append(f"its {RUN_INFO_CHANNEL} field 'hardware_yaml' {hardware_problem} "
                       "(corrupt bytes); the tactile watchdog's default timeout is used")
     taxel_range, acceleration_bound = taxel_force_range(scenario), pad_acceleration_bound(scenario)
-    tactile_messages, implausible, mistimed = _plausible_tactile(
-        decoded[TACTILE_CHANNEL], taxel_range, acceleration_bound)
+    columns = tactile_columns.columns()
+    values_ok = tactile_value_check(columns, taxel_range, acceleration_bound)
+    for name in VALUE_CHECK_COLUMNS:
+        del columns[name]
+    kept = tactile_time_check(columns["utime"], columns["wall_us"], values_ok)
+    implausible = int(np.count_nonzero(~values_ok))
+    mistimed = int(np.count_nonzero(values_ok & ~kept))
     if implausible:
         whose = "its scenario's" if scenario is not None else "any scenario's"
         damage.append(
@@ -924,12 +997,10 @@ def read_run_log(path) -> RunLog:
             f"previous message's, or more than {number_text(MAX_TIME_OUTLIER_S)} s from their "
             "neighbours' while the log's receive times did not move with it (corrupt bytes); "
             "skipped")
-    decoded[TACTILE_CHANNEL] = tactile_messages
-    tactile = tactile_arrays(message for _, message in decoded[TACTILE_CHANNEL])
-    tactile["wall_us"] = np.array([wall for wall, _ in decoded[TACTILE_CHANNEL]])
+    tactile = _kept_tactile(columns, kept)
     tactile_timeout = tactile_watchdog_timeout(hardware)
     damage += [problem for problem in (
-        device_time_damage([message.device_utime for _, message in decoded[TACTILE_CHANNEL]]),
+        device_time_damage(tactile.pop("device_utime")),
         tactile_silence_damage(tactile["t"], tactile_timeout)) if problem]
     # The transitions' Context times lie within the tactile stream's, published every tick
     # from the start of the run to its end (one tick's tolerance each side).

@@ -233,6 +233,17 @@ def test_replay_refuses_a_log_over_its_limit_from_its_size_saying_what_to_do(
                           "a shorter run")
 
 
+def test_replay_refuses_a_log_larger_than_it_can_replay_in_about_a_gigabyte(
+        tmp_path, monkeypatch, capfd, nothing_is_read):
+    """A 300 MB log is refused from its size: the matcher's re-run holds about 4 times a
+    log's tactile bytes (MAX_RUN_LOG_BYTES, 256 MiB; a 10-minute run logs about 230 MB)."""
+    monkeypatch.chdir(tmp_path)
+    _sparse(tmp_path / "long.lcmlog", 300_000_000)
+    code, text = run_cli(["replay", "long.lcmlog"], capfd)
+    assert_one_line_error(code, text, "run log 'long.lcmlog' is 300000000 bytes",
+                          "more than the 268435456 bytes (256 MiB)", "lcm-logfilter")
+
+
 def test_a_file_that_grows_after_its_size_is_taken_is_read_to_its_bound(tmp_path, monkeypatch):
     """read_bounded reads a regular file with a buffer of the size fstat gave; one that grew
     since is read on, and still refused past the limit."""
