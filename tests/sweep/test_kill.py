@@ -113,6 +113,17 @@ def test_a_sweep_started_under_nohup_runs_on_through_a_sighup(tmp_path):
     assert not list(out_dir.rglob(".*"))
 
 
+# Rule: `nohup` leaves SIGTERM at its default action, and SIGTERM stops such a sweep.
+def test_sigterm_stops_a_sweep_started_under_nohup(tmp_path):
+    out_dir = tmp_path / "out"
+    count, returncode = killed_runs.kill_after_some_records(
+        sweep_command(out_dir), lambda: record_files(out_dir), 4, TIMEOUT_S, signal.SIGTERM,
+        signal_dispositions=started_under_nohup)
+    assert returncode == 128 + signal.SIGTERM
+    assert 4 <= count < TRIALS_TOTAL
+    assert not list(out_dir.rglob(".*"))
+
+
 def session_processes(session_id: int) -> set[int]:
     """The pids of the live processes of a session (the sweep started in its own)."""
     pids = set()
