@@ -19,15 +19,27 @@ def environment() -> dict:
     return {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in paths if p)}
 
 
+def default_signal_dispositions():
+    """A Popen preexec_fn: the child's termination signals as a terminal's shell leaves them.
+    A suite run under `nohup` (or by a runner that ignores SIGHUP) would pass its SIG_IGN on
+    through fork and exec, which tegrasp honours (docs/user-guide.md, "Exit codes"), and a
+    SIGHUP a test sends would never arrive."""
+    for number in (signal.SIGHUP, signal.SIGTERM, signal.SIGINT):
+        signal.signal(number, signal.SIG_DFL)
+
+
 def kill_after_some_records(command, record_files, minimum: int, timeout_s: float,
-                            signal_number: int = signal.SIGKILL):
+                            signal_number: int = signal.SIGKILL,
+                            signal_dispositions=default_signal_dispositions):
     """Starts `command` in its own process group and SIGKILLs the group (the parent and its
     workers) once `record_files()` lists `minimum` records; waits until the whole group is
     gone (its folder lock released with it). Returns (records at the kill, return code).
     Another `signal_number` (SIGTERM, SIGHUP) goes to the parent alone, as `kill PID` sends it,
-    and the parent is left to stop as it does on it."""
+    and the parent is left to stop as it does on it. `signal_dispositions` sets the child's
+    before it runs the command (a Popen preexec_fn): by default, a terminal's."""
     process = subprocess.Popen(command, env=environment(), stdout=subprocess.DEVNULL,
-                               stderr=subprocess.DEVNULL, start_new_session=True)
+                               stderr=subprocess.DEVNULL, start_new_session=True,
+                               preexec_fn=signal_dispositions)
     deadline = time.monotonic() + timeout_s
     try:
         while len(record_files()) < minimum:

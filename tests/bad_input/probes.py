@@ -414,14 +414,6 @@ def refused_meta(tmp_path, meta, expected):
     assert str(path) in message and expected in message and "\n" not in message, message
 
 
-def default_signal_dispositions():
-    """The child's termination signals as a terminal's shell leaves them: a suite run under
-    `nohup` (or a runner that ignores SIGHUP) would pass its SIG_IGN on, which tegrasp
-    rightly leaves alone, and the SIGHUP this test sends would never arrive."""
-    for number in (signal.SIGHUP, signal.SIGTERM, signal.SIGINT):
-        signal.signal(number, signal.SIG_DFL)
-
-
 def assert_one_interruption_line(code, text, name):
     assert "Traceback" not in text and "At:" not in text, text
     assert code == 128 + signal.Signals[name].value, (code, text)

@@ -19,8 +19,9 @@ from tegrasp_drake.commands import run_folder
 from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
 from tegrasp_drake.rig import files
 from tests import killed_runs
-from tests.bad_input.probes import (assert_one_interruption_line, default_signal_dispositions,
-                                    memorized_events, parser_of_one_command, run_cli)
+from tests.bad_input.probes import (assert_one_interruption_line, memorized_events,
+                                    parser_of_one_command, run_cli)
+from tests.killed_runs import default_signal_dispositions
 
 
 @pytest.fixture

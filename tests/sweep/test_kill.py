@@ -1,5 +1,6 @@
-"""Acceptance: a sweep killed with SIGKILL and resumed gives exactly the records of an
-uninterrupted run."""
+"""Acceptance: a sweep killed with SIGKILL, or stopped by SIGTERM or SIGHUP, and resumed gives
+exactly the records of an uninterrupted run; started under `nohup`, it runs on through a
+SIGHUP."""
 
 import os
 import signal
@@ -8,9 +9,10 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
 
 from tests import killed_runs
-from tests.killed_runs import environment
+from tests.killed_runs import default_signal_dispositions, environment
 
 TRIALS_TOTAL = 2 * 9 * 3  # two objects, nine markers, three attempts, one controller
 TIMEOUT_S = 600  # [s] a hang guard on a busy host, not a performance criterion
@@ -57,6 +59,69 @@ def test_sigkill_then_resume_gives_the_records_of_an_uninterrupted_run(tmp_path)
         assert a.read_bytes() == b.read_bytes(), a.name
     assert not list((killed_dir / "trials").glob(".*"))  # no temporary file of any kind
     assert (killed_dir / "table1.csv").read_bytes() == (clean_dir / "table1.csv").read_bytes()
+
+
+# Rule: SIGTERM (what `kill` and batch systems send) and SIGHUP (a closed terminal) stop a
+# sweep as Ctrl-C does: the records written stay, no staging or temporary file is left, and
+# the same command resumes to exactly the records of an uninterrupted run. The signal goes
+# to the pid the test started, which `python -m tegrasp_drake.commands.sweep` keeps across
+# its exec of the command line; the sweep starts with the signal at its default action
+# (killed_runs.default_signal_dispositions), whatever the suite's own runner ignores.
+@pytest.mark.parametrize("signal_number", [signal.SIGTERM, signal.SIGHUP])
+def test_sigterm_or_sighup_then_resume_gives_the_records_of_an_uninterrupted_run(
+        tmp_path, signal_number):
+    stopped_dir, clean_dir = tmp_path / "stopped", tmp_path / "clean"
+    count, returncode = killed_runs.kill_after_some_records(
+        sweep_command(stopped_dir), lambda: record_files(stopped_dir), 4, TIMEOUT_S,
+        signal_number)
+    assert returncode == 128 + signal_number
+    assert 4 <= count < TRIALS_TOTAL, "the signal must land in the middle of the sweep"
+    assert not list(stopped_dir.rglob(".*")), list(stopped_dir.rglob(".*"))
+    stopped = {p.name: p.read_bytes() for p in record_files(stopped_dir)}
+
+    resumed = run_to_end(stopped_dir)
+    finished_before = int(resumed.stdout.split(", ")[1].split()[0])
+    assert finished_before == len(stopped)
+    assert f"{TRIALS_TOTAL - finished_before} run now" in resumed.stdout
+    for name, content in stopped.items():  # not run again
+        assert (stopped_dir / "trials" / name).read_bytes() == content, name
+
+    run_to_end(clean_dir)
+    resumed_records, clean = record_files(stopped_dir), record_files(clean_dir)
+    assert [p.name for p in resumed_records] == [p.name for p in clean]
+    for a, b in zip(resumed_records, clean):
+        assert a.read_bytes() == b.read_bytes(), a.name
+    assert not list(stopped_dir.rglob(".*"))
+
+
+def started_under_nohup():
+    """A Popen preexec_fn: the child's signals as `nohup` leaves them (SIGHUP ignored)."""
+    default_signal_dispositions()
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)
+
+
+# Rule: a sweep started with SIGHUP ignored (`nohup tegrasp sweep ...`) keeps it ignored: a
+# closed terminal does not stop it, and it runs to the end.
+def test_a_sweep_started_under_nohup_runs_on_through_a_sighup(tmp_path):
+    out_dir = tmp_path / "out"
+    count, returncode = killed_runs.kill_after_some_records(
+        sweep_command(out_dir), lambda: record_files(out_dir), 4, TIMEOUT_S, signal.SIGHUP,
+        signal_dispositions=started_under_nohup)
+    assert 4 <= count < TRIALS_TOTAL, "the signal must land in the middle of the sweep"
+    assert returncode == 0
+    assert len(record_files(out_dir)) == TRIALS_TOTAL
+    assert not list(out_dir.rglob(".*"))
+
+
+# Rule: `nohup` leaves SIGTERM at its default action, and SIGTERM stops such a sweep.
+def test_sigterm_stops_a_sweep_started_under_nohup(tmp_path):
+    out_dir = tmp_path / "out"
+    count, returncode = killed_runs.kill_after_some_records(
+        sweep_command(out_dir), lambda: record_files(out_dir), 4, TIMEOUT_S, signal.SIGTERM,
+        signal_dispositions=started_under_nohup)
+    assert returncode == 128 + signal.SIGTERM
+    assert 4 <= count < TRIALS_TOTAL
+    assert not list(out_dir.rglob(".*"))
 
 
 def session_processes(session_id: int) -> set[int]:
