@@ -14,6 +14,9 @@ import pytest
 from tests import killed_runs
 from tests.killed_runs import default_signal_dispositions, environment
 
+# Seven sweeps of 54 paced fake trials: minutes on a busy host, so started first.
+pytestmark = pytest.mark.long_file
+
 TRIALS_TOTAL = 2 * 9 * 3  # two objects, nine markers, three attempts, one controller
 TIMEOUT_S = 600  # [s] a hang guard on a busy host, not a performance criterion
 
