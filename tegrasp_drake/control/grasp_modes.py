@@ -7,6 +7,7 @@ import enum
 from tegrasp_drake.rig.api_boundary import public_dataclass
 from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.rig.echo import given, shorten, shown
+from tegrasp_drake.rig.files import one_line
 
 
 class Mode(enum.IntEnum):
@@ -107,6 +108,16 @@ def words_problem(text: str) -> str | None:
     if unprintable is not None:
         return f"got {text[unprintable]!r} at character {unprintable}"
     return f"got {len(text)} characters" if len(text) > MAX_REASON_CHARS else None
+
+
+def as_words(text: str) -> str:
+    """A device's or driver's own text (a fault's description: a Modbus library's error, a
+    watchdog's lines) made WORDS for a transition's reason: one printable line, its line
+    breaks and control characters escaped, cut to MAX_REASON_CHARS with its start and end
+    kept. A device's text is not ours to refuse: the run must still fail on the fault."""
+    line = one_line(text)
+    # shorten adds "..." and " (N characters)": leave room for both.
+    return shorten(line, MAX_REASON_CHARS - 40) if len(line) > MAX_REASON_CHARS else line
 
 
 @public_dataclass

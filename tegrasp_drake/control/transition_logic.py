@@ -9,7 +9,7 @@ from collections.abc import Callable
 from tegrasp_drake.control.corrective_actions import (
     avoid_on_hit, avoid_on_hit_event, lift_load_on_slip_event, lift_load_or_fail,
     relift_after_lift_load)
-from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Decision, Mode, Trigger
+from tegrasp_drake.control.grasp_modes import HOLDING_MODES, Decision, Mode, Trigger, as_words
 from tegrasp_drake.control.rule_actions import Failed, Lift, Load, decide
 from tegrasp_drake.control.rule_engine import ReReachMove, Rule, RuleTable, Situation
 
@@ -81,11 +81,11 @@ def load_timeout_reason(s: Situation) -> str:
 
 
 def _fault(s: Situation) -> Decision:
-    return Decision(Mode.FAILED, Trigger.FAULT, s.obs.device_fault)
+    return Decision(Mode.FAILED, Trigger.FAULT, as_words(s.obs.device_fault))
 
 
 def _gripper_fault(s: Situation) -> Decision:
-    return Decision(Mode.FAILED, Trigger.FAULT, f"gripper fault {s.obs.gripper_fault}")
+    return Decision(Mode.FAILED, Trigger.FAULT, as_words(f"gripper fault {s.obs.gripper_fault}"))
 
 
 def _object_lost(s: Situation) -> bool:

@@ -39,5 +39,7 @@ class DeviceFault:
 
 
 def describe_faults(faults) -> str:
-    """One line per fault, or "no fault"."""
-    return "\n".join(str(fault) for fault in faults) if faults else "no fault"
+    """Every fault on one line, "; " between them, or "no fault": the text the station's
+    device-fault port carries, which the state machine writes as a Failed transition's
+    reason (one timeline line)."""
+    return "; ".join(str(fault) for fault in faults) if faults else "no fault"

@@ -10,9 +10,11 @@ import pytest
 from tegrasp_drake.control.controller_config import (GraspControllerConfig,
                                                      MemorizedCorrectiveConfig)
 from tegrasp_drake.control.corrective_actions import Counters
-from tegrasp_drake.control.grasp_modes import HOLDING_MODES, TERMINAL_MODES, Mode, Trigger
+from tegrasp_drake.control.grasp_modes import (HOLDING_MODES, MAX_REASON_CHARS, TERMINAL_MODES,
+                                              Mode, Transition, Trigger)
 from tegrasp_drake.control.rule_actions import ReReach
 from tegrasp_drake.control.transition_logic import PAPER_TABLE, Observation, next_mode
+from tegrasp_drake.hardware.device_fault import DRIVER_ERROR, SILENT, DeviceFault, describe_faults
 
 HOLD_S = 3.0
 # Fig. 6b: where each mode may go.
@@ -225,6 +227,25 @@ def test_faults_name_the_device():
     assert "gFLT_0x08" in decide(Mode.HOLD, gripper_fault="gFLT_0x08").reason
     assert decide(Mode.LIFT, device_fault="tactile silent since 2.1 s").reason == \
         "tactile silent since 2.1 s"
+
+
+# Rule: a fault's text is the device's or its library's (pymodbus errors, two faults at one
+# tick): whatever it holds, the Failed transition is written, one timeline line, so the run
+# ends on the fault rather than on the reason's check.
+@pytest.mark.parametrize("fault_text", [
+    describe_faults([DeviceFault("gripper", DRIVER_ERROR, "no answer: Modbus Error:\n[I/O]"),
+                     DeviceFault("tactile", SILENT, "no new data for more than 500 ms")]),
+    "arm: silent\nsince t = 1.0 s\x1b[31m",
+    "gripper: driver: " + "Modbus Error " * 200,
+])
+def test_a_fault_of_any_text_fails_the_grasp_with_a_one_line_reason(fault_text):
+    for fields in (dict(device_fault=fault_text), dict(gripper_fault=fault_text)):
+        decision = decide(Mode.HOLD, **fields)
+        entry = Transition(t=1.0, from_mode=Mode.HOLD, to_mode=decision.mode,
+                           trigger=decision.trigger, reason=decision.reason, code=decision.code)
+        assert entry.to_mode == Mode.FAILED
+        assert entry.reason.isprintable() and len(entry.reason) <= MAX_REASON_CHARS
+        assert fault_text.split()[0].rstrip(":") in entry.reason
 
 
 def test_relift_after_lift_load_waits_for_force_and_quiet():
