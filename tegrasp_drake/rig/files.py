@@ -459,7 +459,7 @@ def output_file_problem(path) -> str | None:
     if mode is not None and not stat.S_ISREG(mode):
         if stat.S_ISDIR(mode):
             return "is a folder where a file belongs; give a file name"
-        return (_kind_problem(mode, "") or "is not a regular file").split(";")[0] + \
+        return (_kind_problem(mode) or "is not a regular file").split(";")[0] + \
             "; give a regular file to write"
     problem = replace_problem(path)
     if problem:
@@ -646,14 +646,9 @@ class NotAFileError(OSError):
         self.path = str(path)
 
 
-# Devices a reader may be given, as documented in docs/user-guide.md: /dev/null reads empty,
-# /dev/zero is refused by the size bound of its reader.
-READABLE_DEVICES = ("/dev/null", "/dev/zero")
-
-
-def _kind_problem(mode: int, path, devices=READABLE_DEVICES) -> str | None:
-    """Why a file of stat mode `mode` at `path` is not one to read (None: it is, or is one of
-    `devices`)."""
+def _kind_problem(mode: int) -> str | None:
+    """Why a file of stat mode `mode` is not one to read (None: it is a regular file). Every
+    device is refused alike, /dev/null and /dev/zero too: no input of this tool is a device."""
     if stat.S_ISREG(mode):
         return None
     if stat.S_ISDIR(mode):
@@ -662,33 +657,31 @@ def _kind_problem(mode: int, path, devices=READABLE_DEVICES) -> str | None:
         return "is a named pipe (FIFO), not a file; give a regular file"
     if stat.S_ISSOCK(mode):
         return "is a socket, not a file; give a regular file"
-    if stat.S_ISCHR(mode) and os.path.realpath(path) in devices:
-        return None
     return "is a device, not a file; give a regular file"
 
 
-def file_problem(path, devices=READABLE_DEVICES) -> str | None:
+def file_problem(path) -> str | None:
     """Why `path` cannot be read as a file, in words that follow it ("does not exist", "is a named
-    pipe (FIFO), not a file; ..."), or None (also for one of `devices`); nothing is opened."""
+    pipe (FIFO), not a file; ..."), or None; nothing is opened."""
     try:
         mode = os.stat(path).st_mode
     except FileNotFoundError:
         return "does not exist"
     except OSError as e:
         return f"cannot be read: {e.strerror or e}"
-    return _kind_problem(mode, path, devices)
+    return _kind_problem(mode)
 
 
-def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
+def read_bounded(path, limit: int) -> bytes:
     """The bytes of the file at `path`: InputTooLargeError past `limit`; NotAFileError for a
-    folder, FIFO, socket or device (but `devices`), checked before a byte is read. A regular
-    file larger than `limit` is refused from its size (fstat of the file opened) before a
-    byte is read, so a 3 GB file costs no 1 GB read to refuse; what fstat cannot size (one
-    of `devices`) or a file that grows while read is still held to `limit` by the read."""
+    folder, FIFO, socket or device (/dev/null and /dev/zero too), from fstat of the file
+    opened before a byte is read. A regular file larger than `limit` is refused from its size
+    before a byte is read, so a 3 GB file costs no 1 GB read to refuse; a file that grows
+    while read is still held to `limit` by the read."""
     descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
         status = os.fstat(descriptor)
-        problem = _kind_problem(status.st_mode, path, devices)
+        problem = _kind_problem(status.st_mode)
         if problem:
             raise NotAFileError(path, problem)
         if stat.S_ISREG(status.st_mode) and status.st_size > limit:
@@ -939,7 +932,7 @@ def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "
     holds such a file), a byte-order mark, a decoding error, truncated JSON, a duplicate key,
     NaN, deep nesting."""
     try:
-        raw = read_bounded(path, limit, devices=())
+        raw = read_bounded(path, limit)
         if raw.startswith(_UTF8_BOM):  # before decoding: an ASCII file's is no decoding error
             raise ByteOrderMarkError(BYTE_ORDER_MARK_PROBLEM)
         data = load_json(raw.decode(encoding))

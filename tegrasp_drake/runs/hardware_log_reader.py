@@ -832,7 +832,7 @@ def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
     path = pathlib.Path(path)
-    problem = file_problem(path, devices=())  # /dev/null, /dev/zero: not a log either
+    problem = file_problem(path)
     if problem == "does not exist":
         raise RunLogError(f"run log '{path}' does not exist (`tegrasp hardware --log FILE` "
                           "writes one)")
