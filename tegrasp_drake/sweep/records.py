@@ -469,7 +469,11 @@ def read_record(path) -> tuple[dict | None, str | None]:
 def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
     """Reads every record under `<out_dir>/trials` (temporary files ignored; no trials folder:
     no records); UserPathError for a path that is not a folder, or a trials folder this user
-    cannot read (not one without records)."""
+    cannot read (not one without records). A folder without records reads as empty, not as
+    an error, on purpose: it is how a sweep starts (run_sweep reads its --out to resume, and a
+    new one holds none) and how a transfer's or sensitivity study's report reads a cell not
+    run yet. What needs records refuses an empty result itself, in its own words:
+    write_reports (ValueError), `tegrasp plot` and the analysis scripts."""
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt, others = {}, {}, []
     for path in folder_entries(folder) or []:  # UserPathError: a trials/ that cannot be read
