@@ -7,7 +7,7 @@ from collections.abc import Sequence
 from typing import Annotated
 
 from tegrasp_drake.sweep.offset_table import offset_table_starts, write_offset_table
-from tegrasp_drake.sweep.records import load_records
+from tegrasp_drake.sweep.records import load_records, results_parsed_once
 from tegrasp_drake.sweep.summary import SUMMARY_FILE, SUMMARY_START, write_summary
 from tegrasp_drake.sweep.table import (statistics_starts, table1_starts, write_statistics,
                                        write_table1)
@@ -62,14 +62,15 @@ def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
     problem = foreign_report_problem(out_dir, report_starts(), "sweep")
     if problem:
         raise UserPathError(problem)
-    paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
-             + write_summary(records, out_dir) + write_offset_table(records, out_dir))
-    if any(record["status"] == "ok" for record in records):
-        paths.append(write_success_maps(records, out_dir,
-                                        figure_path(".", FIGURE_STEMS[0], figure_format).name))
-        paths.append(Path(plot_table1(records, figure_path(out_dir, FIGURE_STEMS[1],
-                                                           figure_format))))
-    if latency_samples(records):
-        paths.append(Path(plot_latency_distributions(
-            records, figure_path(out_dir, FIGURE_STEMS[2], figure_format))))
+    with results_parsed_once():  # every table and figure reads each record's result
+        paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
+                 + write_summary(records, out_dir) + write_offset_table(records, out_dir))
+        if any(record["status"] == "ok" for record in records):
+            paths.append(write_success_maps(records, out_dir,
+                                            figure_path(".", FIGURE_STEMS[0], figure_format).name))
+            paths.append(Path(plot_table1(records, figure_path(out_dir, FIGURE_STEMS[1],
+                                                               figure_format))))
+        if latency_samples(records):
+            paths.append(Path(plot_latency_distributions(
+                records, figure_path(out_dir, FIGURE_STEMS[2], figure_format))))
     return paths
