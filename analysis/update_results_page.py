@@ -31,7 +31,7 @@ def main(argv=None) -> int:
     args = parser.parse_args(argv)
     path = pathlib.Path(args.page)
     try:  # a folder, FIFO or device refused before it is opened for reading (no blocking)
-        text = read_bounded(path, MAX_PAGE_BYTES, devices=()).decode("utf-8")
+        text = read_bounded(path, MAX_PAGE_BYTES).decode("utf-8")
     except UnicodeDecodeError as error:
         raise SystemExit(f"update_results_page: {path}: is not UTF-8 text (byte {error.start}); "
                          "give the Markdown results page") from None

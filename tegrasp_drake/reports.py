@@ -6,14 +6,28 @@ from pathlib import Path
 from collections.abc import Sequence
 from typing import Annotated
 
-from tegrasp_drake.sweep.offset_table import write_offset_table
-from tegrasp_drake.sweep.records import load_records
-from tegrasp_drake.sweep.summary import write_summary
-from tegrasp_drake.sweep.table import write_statistics, write_table1
+from tegrasp_drake.sweep.offset_table import offset_table_starts, write_offset_table
+from tegrasp_drake.sweep.records import load_records, results_parsed_once
+from tegrasp_drake.sweep.summary import SUMMARY_FILE, SUMMARY_START, write_summary
+from tegrasp_drake.sweep.table import (statistics_starts, table1_starts, write_statistics,
+                                       write_table1)
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
 from tegrasp_drake.rig.api_boundary import UPDATED_FOLDER, PathLike, public_api
 from tegrasp_drake.rig.ranges import Choice
 from tegrasp_drake.rig.echo import shorten
+from tegrasp_drake.rig.files import UserPathError
+from tegrasp_drake.rig.report_files import foreign_report_problem
+
+# The figures' file stems: success maps, Table I against the paper, detection latencies.
+FIGURE_STEMS = ("success_maps", "table1_vs_paper", "latency")
+
+
+def report_starts() -> dict[str, str]:
+    """The text reports write_reports writes, by file name, and how each starts
+    (rig.report_files: an existing file under one of these names is replaced only when it
+    starts so)."""
+    return {**table1_starts(), **statistics_starts(), SUMMARY_FILE: SUMMARY_START,
+            **offset_table_starts()}
 
 
 @public_api
@@ -23,7 +37,8 @@ def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
     """Writes Table I, the statistics, the summary, success by offset and the figures
     (`figure_format`) into `out_dir`, from the records only (with `trial_ids`, those trials');
     corrupt records are skipped, figures need a finished trial; ValueError (nothing written)
-    for a folder with no readable record."""
+    for a folder with no readable record; UserPathError (nothing written) when a file there
+    under a report's name is not that report (rig.report_files), the user's own."""
     # Imported here: matplotlib loads only when a report is written.
     from tegrasp_drake.figures.figure_files import figure_path
     from tegrasp_drake.figures.latency import latency_samples, plot_latency_distributions
@@ -44,14 +59,18 @@ def write_reports(out_dir: Annotated[PathLike, UPDATED_FOLDER],
         raise ValueError(f"write_reports: argument 'trial_ids' names no trial recorded in "
                          f"{shorten(str(out_dir))} (got {shorten(repr(sorted(own)))}; it has "
                          f"{len(recorded)} records); give their ids, or None for all")
-    paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
-             + write_summary(records, out_dir) + write_offset_table(records, out_dir))
-    if any(record["status"] == "ok" for record in records):
-        paths.append(write_success_maps(records, out_dir,
-                                        figure_path(".", "success_maps", figure_format).name))
-        paths.append(Path(plot_table1(records, figure_path(out_dir, "table1_vs_paper",
-                                                           figure_format))))
-    if latency_samples(records):
-        paths.append(Path(plot_latency_distributions(
-            records, figure_path(out_dir, "latency", figure_format))))
+    problem = foreign_report_problem(out_dir, report_starts(), "sweep")
+    if problem:
+        raise UserPathError(problem)
+    with results_parsed_once():  # every table and figure reads each record's result
+        paths = (write_table1(records, out_dir) + write_statistics(records, out_dir)
+                 + write_summary(records, out_dir) + write_offset_table(records, out_dir))
+        if any(record["status"] == "ok" for record in records):
+            paths.append(write_success_maps(records, out_dir,
+                                            figure_path(".", FIGURE_STEMS[0], figure_format).name))
+            paths.append(Path(plot_table1(records, figure_path(out_dir, FIGURE_STEMS[1],
+                                                               figure_format))))
+        if latency_samples(records):
+            paths.append(Path(plot_latency_distributions(
+                records, figure_path(out_dir, FIGURE_STEMS[2], figure_format))))
     return paths

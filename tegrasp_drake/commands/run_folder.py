@@ -132,7 +132,7 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
     if problem:
         raise RunFolderError(problem)
     for name in sorted(run_file_names()) if out is not None else ():
-        problem = os.path.lexists(folder / name) and file_problem(folder / name, devices=())
+        problem = os.path.lexists(folder / name) and file_problem(folder / name)
         if not problem and os.path.islink(folder / name):  # a run writes no link: the user's
             problem = "is a symbolic link (a run writes its files itself, never a link)"
         if problem and problem != "does not exist":  # a dangling symlink is replaced
@@ -345,8 +345,8 @@ def recorded_figure_names(folder) -> set[str]:
     of each figure field's path: the folder may have been moved or copied since); none when
     the folder holds no result.json that reads as a run's (a JSON object)."""
     try:
-        result = load_json(read_bounded(pathlib.Path(folder) / RESULT_FILE, MAX_RESULT_BYTES,
-                                        devices=()).decode("utf-8"))
+        result = load_json(read_bounded(pathlib.Path(folder) / RESULT_FILE,
+                                        MAX_RESULT_BYTES).decode("utf-8"))
     except (OSError, ValueError, RecursionError):  # missing, not a file, not JSON, too large
         return set()
     if not isinstance(result, dict):
@@ -410,8 +410,7 @@ def foreign_run_file_problem(folder) -> str | None:
     if not own(folder / RESULT_FILE):
         return None
     try:
-        data = load_json(read_bounded(folder / RESULT_FILE, MAX_RESULT_BYTES,
-                                      devices=()).decode("utf-8"))
+        data = load_json(read_bounded(folder / RESULT_FILE, MAX_RESULT_BYTES).decode("utf-8"))
         TrialResult.from_dict(data)
     except (OSError, ValueError, TypeError, RecursionError) as error:
         reason = error.strerror if isinstance(error, OSError) else str(error)

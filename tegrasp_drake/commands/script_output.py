@@ -13,6 +13,7 @@ from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_
 from tegrasp_drake.rig.files import (MARKDOWN_START, MARKDOWN_TABLE_START, UserPathError,
                                      error_line, folder_problem, output_file_problem,
                                      write_atomically)
+from tegrasp_drake.rig.report_files import report_replace_problem
 from tegrasp_drake.rig.usage_parser import UsageParser
 from tegrasp_drake.rig.echo import shown
 
@@ -26,7 +27,7 @@ def write_report(path, text: str, *, script: str, start: bytes = MARKDOWN_START
     replaced only when its first line is `text`'s (report_replace_problem): the user's notes
     or another script's report at `path` are never lost."""
     kind = "table" if start == MARKDOWN_TABLE_START else "report"
-    problem = report_replace_problem(path, text.split("\n", 1)[0], kind)
+    problem = report_replace_problem(path, text.split("\n", 1)[0] + "\n", kind)
     if problem:
         raise SystemExit(f"{script}: error: {path} {problem}")
     try:
@@ -359,8 +360,8 @@ def refuse_unusable_output(script: str, path, *, figure: bool = False, overwrite
         raise SystemExit(f"{script}: cannot write {path}: {problem}")
     problem = (figure_replace_problem(path, overwrite=overwrite) if figure else None if edited
                else rows_replace_problem(path, rows) if rows
-               else report_replace_problem(path, title, "table" if title.startswith("| ")
-                                           else "report"))
+               else report_replace_problem(path, title + "\n",
+                                           "table" if title.startswith("| ") else "report"))
     if problem:
         raise SystemExit(f"{script}: error: {path} {problem}")
 
@@ -397,25 +398,3 @@ _ROWS_BYTES = 16 * 1024 * 1024
 # --overwrite of a script writing a figure the user names, in `tegrasp plot`'s words.
 OVERWRITE_HELP = ("replace an existing figure at the path given (a file that is not a figure "
                   "of its format is never replaced)")
-_HEAD_BYTES = 4096  # enough for any title line a script writes
-
-
-def report_replace_problem(path, title: str, kind: str = "report") -> str | None:
-    """Why a script's report (a bare `table`) whose first line is `title` may not replace the
-    file at `path`, in words that follow it, or None: only a file whose first line is
-    `title` is one this script wrote (a sweep's table, the user's notes or JSON are not).
-    Only the head is read."""
-    try:
-        with open(path, "rb") as existing:
-            head = existing.read(_HEAD_BYTES)
-    except (FileNotFoundError, NotADirectoryError, IsADirectoryError):
-        return None  # nothing there, or a folder (output_file_problem says so)
-    except OSError as error:
-        return (f"cannot be read to check what it is ({error.strerror or error}); give another "
-                "file name")
-    first = head.split(b"\n", 1)[0].rstrip(b"\r")
-    if first.decode("utf-8", errors="replace") == title:
-        return None
-    shown_first = shown(first.decode("utf-8", errors="replace")) if first else "empty"
-    return (f"exists and is not a {kind} this script writes (its first line is {shown_first}); "
-            "give another file name, or remove it yourself")

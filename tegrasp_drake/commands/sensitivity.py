@@ -9,8 +9,8 @@ import contextlib
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          OptionError, check_runner_arguments, output_folder_held,
-                                          refusals_said, resolve_trial_function,
+                                          OptionError, check_report_files, check_runner_arguments,
+                                          output_folder_held, refusals_said, resolve_trial_function,
                                           scheduler_connection)
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.typed_yaml import ConfigError
@@ -54,11 +54,13 @@ def run(args) -> int:
 
 
 def _run(args, held: contextlib.ExitStack) -> int:
-    from tegrasp_drake.sensitivity.report import write_sensitivity_report
+    from tegrasp_drake.sensitivity.report import (FIGURE_STEM, REPORT_FILE, REPORT_START,
+                                                  write_sensitivity_report)
     from tegrasp_drake.sensitivity.study import (LoadSensitivitySpec, latin_hypercube,
                                                  one_at_a_time, run_sensitivity)
     with refusals_said() as refused:
         check_runner_arguments(args, "sensitivity")
+        check_report_files(args, "sensitivity", {REPORT_FILE: REPORT_START}, (FIGURE_STEM,))
         with scheduler_connection(args, "sensitivity") as scheduler:
             spec = LoadSensitivitySpec(args.spec)
             if args.latin_hypercube is None:

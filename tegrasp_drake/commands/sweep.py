@@ -18,7 +18,7 @@ from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.run_folder import logs_folder_problem, other_run_problem
 from tegrasp_drake.commands.events_option import check_events_folder
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
-from tegrasp_drake.reports import write_reports
+from tegrasp_drake.reports import FIGURE_STEMS, report_starts, write_reports
 from tegrasp_drake.rig.integer_text import integer_option
 from tegrasp_drake.rig.api_boundary import bound_arguments
 from tegrasp_drake.rig.files import (FOLDER_HELD, error_line, folder_problem,
@@ -449,6 +449,28 @@ def check_runner_arguments(args, command: str) -> None:
         raise OptionError(problem)
 
 
+def check_report_files(args, command: str, reports: dict[str, str],
+                       figure_stems: tuple[str, ...]) -> None:
+    """OptionError when --out holds a file under the name of one of the command's text
+    `reports` (file name -> how it starts) that is not that report (rig.report_files), or
+    under one of its figures' names (`figure_stems`, in --format) that is not a figure of
+    that format (figure_files.figure_replace_problem): the user's own file, which the
+    command's reports would replace. Asked before anything runs."""
+    from pathlib import Path
+    from tegrasp_drake.figures.figure_files import figure_path, figure_replace_problem
+    from tegrasp_drake.rig.report_files import foreign_report_problem
+    problem = foreign_report_problem(args.out, reports, command)
+    if problem:
+        raise OptionError(problem)
+    for stem in figure_stems:
+        path = figure_path(args.out, stem, args.format)
+        problem = figure_replace_problem(path)
+        if problem:
+            raise OptionError(f"--out {Path(args.out)}: {path.name} {problem.split(';')[0]}, and a "
+                              f"{command} run replaces its {path.name}; move it out of the "
+                              "folder, or give another --out")
+
+
 @contextlib.contextmanager
 def output_folder_held(args, command: str):
     """Holds --out for the rest of the command (rig.files.held_folder, the lock every run
@@ -554,6 +576,8 @@ def _run(args, held: contextlib.ExitStack) -> int:
     with refusals_said() as refused:
         check_benchmark_options(args)  # before the scheduler is asked whether it answers
         check_runner_arguments(args, "sweep")
+        if not args.benchmark:  # a benchmark writes into folders of its own, no reports
+            check_report_files(args, "sweep", report_starts(), FIGURE_STEMS)
         check_spec_options(args)
         with scheduler_connection(args, "sweep") as scheduler:
             spec = spec_from_arguments(args)

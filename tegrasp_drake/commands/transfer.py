@@ -7,8 +7,8 @@ import contextlib
 
 from tegrasp_drake.commands.progress import progress_wanted
 from tegrasp_drake.commands.sweep import (DEFAULT_TRIAL_FUNCTION, add_runner_arguments,
-                                          check_runner_arguments, output_folder_held,
-                                          refusals_said, resolve_trial_function,
+                                          check_report_files, check_runner_arguments,
+                                          output_folder_held, refusals_said, resolve_trial_function,
                                           scheduler_connection)
 from tegrasp_drake.sweep.runner import summary_text
 
@@ -48,9 +48,11 @@ def run(args) -> int:
 
 def _run(args, held: contextlib.ExitStack) -> int:
     from tegrasp_drake.transfer.matrix import LoadTransferSpec, run_transfer
-    from tegrasp_drake.transfer.report import write_transfer_reports
+    from tegrasp_drake.transfer.report import (FIGURE_STEM, TABLE_FILE, TABLE_START,
+                                               write_transfer_reports)
     with refusals_said() as refused:
         check_runner_arguments(args, "transfer")
+        check_report_files(args, "transfer", {TABLE_FILE: TABLE_START}, (FIGURE_STEM,))
         with scheduler_connection(args, "transfer") as scheduler:
             spec = LoadTransferSpec(args.spec, confirmed_trials=args.confirm_trials)
             trial_function = resolve_trial_function(args.trial_function)

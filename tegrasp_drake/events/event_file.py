@@ -403,7 +403,7 @@ def recorded_file_problem(path, expected_format: str) -> str | None:
     "format" field, or, in a file damaged past JSON (which re-recording remakes), by that
     field as the writer writes it."""
     try:
-        raw = read_bounded(path, MAX_EVENT_FILE_BYTES, devices=())
+        raw = read_bounded(path, MAX_EVENT_FILE_BYTES)
     except (FileNotFoundError, NotADirectoryError):
         return None
     except NotAFileError as error:

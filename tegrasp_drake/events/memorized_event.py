@@ -8,7 +8,7 @@ from collections.abc import Mapping
 import numpy as np
 
 import tegrasp_drake
-from tegrasp_drake.rig.api_boundary import check_field_values, public_dataclass
+from tegrasp_drake.rig.api_boundary import array_problem, check_field_values, public_dataclass
 from tegrasp_drake.rig.number_text import number_text
 from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
@@ -65,12 +65,14 @@ class MemorizedEvent:
             raise ValueError(f"pre_transition_s {number_text(self.pre_transition_s)} must lie "
                              f"within the {number_text(self.window_s)} s window")
         for name, rate in (("sa", self.sa_rate_hz), ("ra", self.ra_rate_hz)):
-            window = np.array(getattr(self, name), dtype=float)
             expected = (2, samples_per_window(self.window_s, rate))
-            if window.shape != expected:
-                raise ValueError(f"'{name}' has shape {window.shape}; "
+            # Its shape before it is converted: a huge array is refused without a copy.
+            problem = array_problem(getattr(self, name), expected)
+            if problem:
+                raise ValueError(f"'{name}' {problem}; "
                                  f"{number_text(self.window_s)} s at {number_text(rate)} Hz "
                                  f"for two fingers needs {expected}")
+            window = np.array(getattr(self, name), dtype=float)
             if not np.all(np.isfinite(window)):
                 raise ValueError(f"'{name}' holds non-finite values")
             peaks = np.max(np.abs(window), axis=1)

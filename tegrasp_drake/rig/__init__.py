@@ -22,5 +22,6 @@
   api_boundary.py           argument checks at the public API; dataclasses take fields only
   files.py                  atomic writes, bounded reads, signals, strict JSON
   file_window.py            a file's bytes read a window at a time (len, slices, find)
+  report_files.py           a text report replaces only an earlier report of its kind
   usage_parser.py           every command line's parser: a bad one refused in one line
   npz_headers.py            .npz arrays checked from their headers"""

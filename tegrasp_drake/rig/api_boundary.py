@@ -242,6 +242,18 @@ def python_numbers(value):
     return python_scalar(value) if _numpy_scalar(value) else value
 
 
+def array_problem(array, expected_shape: tuple[int, ...]) -> str | None:
+    """Why the NumPy array `array` (a public dataclass's array field, of type ndarray as its
+    type check asks) cannot be an array of real numbers of `expected_shape`, in words that
+    follow its name, or None; read from its `shape` and `dtype` (free on an ndarray) before
+    any conversion, so that a 100-million-row array is refused without a copy."""
+    if array.dtype.kind not in "biuf":
+        return f"holds {array.dtype} values, not real numbers"
+    if tuple(array.shape) != tuple(expected_shape):
+        return f"has shape {tuple(array.shape)}"
+    return None
+
+
 def _numpy_scalar(value) -> bool:
     """A NumPy number or bool, as a scalar or a 0-d array (one python_scalar converts)."""
     return (type(value).__module__ == "numpy" and getattr(value, "ndim", None) == 0

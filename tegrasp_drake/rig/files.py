@@ -459,7 +459,7 @@ def output_file_problem(path) -> str | None:
     if mode is not None and not stat.S_ISREG(mode):
         if stat.S_ISDIR(mode):
             return "is a folder where a file belongs; give a file name"
-        return (_kind_problem(mode, "") or "is not a regular file").split(";")[0] + \
+        return (_kind_problem(mode) or "is not a regular file").split(";")[0] + \
             "; give a regular file to write"
     problem = replace_problem(path)
     if problem:
@@ -646,14 +646,9 @@ class NotAFileError(OSError):
         self.path = str(path)
 
 
-# Devices a reader may be given, as documented in docs/user-guide.md: /dev/null reads empty,
-# /dev/zero is refused by the size bound of its reader.
-READABLE_DEVICES = ("/dev/null", "/dev/zero")
-
-
-def _kind_problem(mode: int, path, devices=READABLE_DEVICES) -> str | None:
-    """Why a file of stat mode `mode` at `path` is not one to read (None: it is, or is one of
-    `devices`)."""
+def _kind_problem(mode: int) -> str | None:
+    """Why a file of stat mode `mode` is not one to read (None: it is a regular file). Every
+    device is refused alike, /dev/null and /dev/zero too: no input of this tool is a device."""
     if stat.S_ISREG(mode):
         return None
     if stat.S_ISDIR(mode):
@@ -662,56 +657,51 @@ def _kind_problem(mode: int, path, devices=READABLE_DEVICES) -> str | None:
         return "is a named pipe (FIFO), not a file; give a regular file"
     if stat.S_ISSOCK(mode):
         return "is a socket, not a file; give a regular file"
-    if stat.S_ISCHR(mode) and os.path.realpath(path) in devices:
-        return None
     return "is a device, not a file; give a regular file"
 
 
-def file_problem(path, devices=READABLE_DEVICES) -> str | None:
+def file_problem(path) -> str | None:
     """Why `path` cannot be read as a file, in words that follow it ("does not exist", "is a named
-    pipe (FIFO), not a file; ..."), or None (also for one of `devices`); nothing is opened."""
+    pipe (FIFO), not a file; ..."), or None; nothing is opened."""
     try:
         mode = os.stat(path).st_mode
     except FileNotFoundError:
         return "does not exist"
     except OSError as e:
         return f"cannot be read: {e.strerror or e}"
-    return _kind_problem(mode, path, devices)
+    return _kind_problem(mode)
 
 
-def open_bounded(path, limit: int, devices=READABLE_DEVICES):
+def open_bounded(path, limit: int):
     """The file at `path` opened for reading (a binary stream) and its size [bytes] from
-    fstat (None for one of `devices`, which fstat cannot size): InputTooLargeError for a
-    regular file larger than `limit`; NotAFileError for a folder, FIFO, socket or device (but
-    `devices`); both checked before a byte is read."""
+    fstat: InputTooLargeError for a file larger than `limit`; NotAFileError for a folder,
+    FIFO, socket or device (/dev/null and /dev/zero too); both checked before a byte is
+    read, so a 3 GB file costs no 1 GB read to refuse."""
     descriptor = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     try:
         status = os.fstat(descriptor)
-        problem = _kind_problem(status.st_mode, path, devices)
+        problem = _kind_problem(status.st_mode)
         if problem:
             raise NotAFileError(path, problem)
-        if stat.S_ISREG(status.st_mode) and status.st_size > limit:
+        if status.st_size > limit:
             raise InputTooLargeError(path, limit)
         os.set_blocking(descriptor, True)
         stream = os.fdopen(descriptor, "rb")
     except BaseException:
         os.close(descriptor)
         raise
-    return stream, status.st_size if stat.S_ISREG(status.st_mode) else None
+    return stream, status.st_size
 
 
-def read_bounded(path, limit: int, devices=READABLE_DEVICES) -> bytes:
-    """The bytes of the file at `path`: InputTooLargeError past `limit`; NotAFileError for a
-    folder, FIFO, socket or device (but `devices`), checked before a byte is read. A regular
-    file larger than `limit` is refused from its size (fstat of the file opened) before a
-    byte is read, so a 3 GB file costs no 1 GB read to refuse; what fstat cannot size (one
-    of `devices`) or a file that grows while read is still held to `limit` by the read."""
-    stream, size = open_bounded(path, limit, devices)
+def read_bounded(path, limit: int) -> bytes:
+    """The bytes of the file at `path`: open_bounded's checks, then a file that grows while
+    read is still held to `limit` by the read."""
+    stream, size = open_bounded(path, limit)
     # A regular file is read with a buffer of its size, not of `limit` (read(n) allocates
     # n bytes first: 1 GiB for a run log of 1 MB); one that grew since fstat is read on to
     # the bound.
     wanted = limit + 1
-    first = min(wanted, size + 1) if size is not None else wanted
+    first = min(wanted, size + 1)
     with stream:
         data = stream.read(first)
         if len(data) == first < wanted:
@@ -948,7 +938,7 @@ def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "
     holds such a file), a byte-order mark, a decoding error, truncated JSON, a duplicate key,
     NaN, deep nesting."""
     try:
-        raw = read_bounded(path, limit, devices=())
+        raw = read_bounded(path, limit)
         if raw.startswith(_UTF8_BOM):  # before decoding: an ASCII file's is no decoding error
             raise ByteOrderMarkError(BYTE_ORDER_MARK_PROBLEM)
         data = load_json(raw.decode(encoding))

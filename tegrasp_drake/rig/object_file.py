@@ -337,7 +337,7 @@ def _gltf_uris(mesh: pathlib.Path, named: str) -> list[tuple[str, str]]:
     """(buffers or images, uri) of each entry of the glTF file `mesh` that names a file (an
     entry without a uri is a .glb's own chunk, a data: URI holds its bytes)."""
     try:
-        document = json.loads(read_bounded(mesh, MAX_MESH_FILE_BYTES, devices=()))
+        document = json.loads(read_bounded(mesh, MAX_MESH_FILE_BYTES))
     except (ValueError, RecursionError) as e:
         raise ConfigError(f"{named} is not a glTF file Drake can read: it is not JSON "
                           f"({type(e).__name__}: {e})") from None
@@ -373,7 +373,7 @@ def _obj_file_names(path: pathlib.Path, keyword, *, last_only: bool) -> list[str
     mtllib may name several libraries), or the last word only (a texture, its options before
     it)."""
     names = []
-    for line in read_bounded(path, MAX_SUPPORTING_FILE_BYTES, devices=()).decode(
+    for line in read_bounded(path, MAX_SUPPORTING_FILE_BYTES).decode(
             "utf-8", errors="replace").splitlines():
         words = line.split()
         if len(words) > 1 and keyword(words[0]):
@@ -402,7 +402,7 @@ def _resolved(uri: str, package_map, folder: pathlib.Path, refusal: str) -> path
 def _check_regular_file(path: pathlib.Path, limit: int, named: str) -> None:
     """ConfigError, `named` first, unless `path` is a regular file of at most `limit` bytes
     (a model or mesh is never a device: not /dev/null or /dev/zero either)."""
-    problem = file_problem(path, devices=())
+    problem = file_problem(path)
     if problem is None and path.stat().st_size > limit:
         problem = f"is larger than {limit} bytes, the most this reads"
     if problem:
@@ -445,7 +445,7 @@ def _mesh_references(path: pathlib.Path, named: str) -> list[str]:
     parser.CharacterDataHandler = text.append
     parser.StartDoctypeDeclHandler = document_type
     try:
-        parser.Parse(read_bounded(path, MAX_MODEL_FILE_BYTES, devices=()), True)
+        parser.Parse(read_bounded(path, MAX_MODEL_FILE_BYTES), True)
     except _DocumentTypeDeclared:
         raise ConfigError(f"{named} declares a document type (<!DOCTYPE ...>), which a model "
                           "file has no use for and whose entities could expand without "

@@ -893,7 +893,7 @@ def read_run_log(path) -> RunLog:
     """Reads a hardware run's LCM log; RunLogError names the file when it is missing or
     holds no event; a damaged log is read as far as it can be (`RunLog.damage`)."""
     path = pathlib.Path(path)
-    problem = file_problem(path, devices=())  # /dev/null, /dev/zero: not a log either
+    problem = file_problem(path)
     if problem == "does not exist":
         raise RunLogError(f"run log '{path}' does not exist (`tegrasp hardware --log FILE` "
                           "writes one)")
@@ -904,7 +904,7 @@ def read_run_log(path) -> RunLog:
     tactile_columns = TactileColumns()
     counts, undecodable = {}, {}
     try:
-        stream, size = open_bounded(path, MAX_RUN_LOG_BYTES, devices=())
+        stream, size = open_bounded(path, MAX_RUN_LOG_BYTES)
     except InputTooLargeError:  # from the file's size, before a byte is read
         raise RunLogError(too_large_run_log_problem(path)) from None
     except OSError as e:

@@ -170,7 +170,7 @@ def check_trial_log_file(path: PathLike) -> None:
     """TrialLogError naming `path` unless it is a regular file, asked before a byte is read:
     every reader of a trial log (plot, the myRIO emulator) starts here."""
     path = pathlib.Path(path)
-    problem = file_problem(path, devices=())  # /dev/null, /dev/zero: not a log either
+    problem = file_problem(path)
     if problem == "does not exist":
         raise TrialLogError(f"trial log '{path}' does not exist (make one with `tegrasp trial "
                             "--out DIR`: DIR/trial.npz, or `tegrasp demo`: out/demo/trial.npz)")

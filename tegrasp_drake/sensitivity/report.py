@@ -10,7 +10,8 @@ import pathlib
 import numpy as np
 
 from tegrasp_drake.figures.figure_files import figure_path, new_figure, save_figure
-from tegrasp_drake.rig.files import MARKDOWN_START, is_folder, write_atomically
+from tegrasp_drake.rig.files import is_folder
+from tegrasp_drake.rig.report_files import write_report
 from tegrasp_drake.sensitivity.study import DEFAULT_POINT, point_folder_cell, transfer_spec
 from tegrasp_drake.sweep.failure_classes import FAILURE_CLASSES, failure_class
 from tegrasp_drake.sweep.records import load_records, record_result
@@ -18,6 +19,7 @@ from tegrasp_drake.sweep.spec import expand_trials
 from tegrasp_drake.transfer.matrix import cell_folder, running_sweep
 
 REPORT_FILE = "sensitivity.md"
+REPORT_START = "# Sensitivity to the guessed parameters\n"  # its title line
 FIGURE_STEM = "tornado"
 METRICS = (("misplaced held", "held"), ("misplaced placed", "placed"))
 
@@ -221,7 +223,7 @@ def write_sensitivity_report(spec, points, out_dir, *,
     written = []
     figure = draw_tornado(points, rows, controllers,
                           figure_path(out_dir, FIGURE_STEM, figure_format))
-    text = ["# Sensitivity to the guessed parameters", "",
+    text = [REPORT_START.rstrip("\n"), "",
             f"{len(points)} points, events memorized "
             + ("in each point's own world" if spec.events == "each_point"
                else "once, at the defaults") + ". Misplaced: the trials off the centre marker.",
@@ -238,6 +240,5 @@ def write_sensitivity_report(spec, points, out_dir, *,
     missing = [p.name for p in points if not any(r.point == p.name for r in rows)]
     if missing:
         text += [f"Not run yet (no finished trial): {', '.join(missing)}.", ""]
-    written.insert(0, write_atomically(out_dir / REPORT_FILE, "\n".join(text),
-                                         start=MARKDOWN_START))
+    written.insert(0, write_report(out_dir / REPORT_FILE, "\n".join(text), REPORT_START))
     return written

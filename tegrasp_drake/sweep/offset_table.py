@@ -9,7 +9,7 @@ from pathlib import Path
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
 from tegrasp_drake.sweep.records import record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
-from tegrasp_drake.sweep.table import (ordered_names, succeeded,
+from tegrasp_drake.sweep.table import (markdown_and_csv_starts, ordered_names, succeeded,
                                        write_markdown_and_csv)
 
 PHASES = ("hold", "unload")
@@ -56,8 +56,18 @@ def _cell(successes: int, trials: int) -> str:
     return f"{successes}/{trials}" if trials else "–"
 
 
+OFFSET_TITLE = "# Success per placement offset"
+OFFSET_HEADER = ["controller", "object", "marker_dx_mm", "marker_dy_mm", "trials",
+                 "hold_successes", "unload_successes", "errors"]
+
+
+def offset_table_starts() -> dict[str, str]:
+    """success_by_offset.md and .csv, and how each starts (report_files)."""
+    return markdown_and_csv_starts("success_by_offset", OFFSET_TITLE, OFFSET_HEADER)
+
+
 def offset_markdown(rows: list[OffsetRow]) -> str:
-    lines = ["# Success per placement offset", "",
+    lines = [OFFSET_TITLE, "",
              "Each marker's nominal offset from the expected position (dx normal to the palm, "
              "dy along the stroke; every attempt adds jitter), and per object the trials that "
              "held the object 3 s (~Hold) and held then placed it upright (~Unload), as "
@@ -92,10 +102,8 @@ def offset_markdown(rows: list[OffsetRow]) -> str:
 def write_offset_table(records, out_dir) -> list[Path]:
     """Writes `success_by_offset.md` and `.csv` into `out_dir`; returns their paths."""
     rows = offset_rows(records)
-    header = ["controller", "object", "marker_dx_mm", "marker_dy_mm", "trials",
-              "hold_successes", "unload_successes", "errors"]
     csv_rows = [[row.controller, row.object_name, f"{row.marker_dx_mm:g}",
                  f"{row.marker_dy_mm:g}", row.trials, row.hold_successes,
                  row.unload_successes, row.errors] for row in rows]
-    return write_markdown_and_csv(out_dir, "success_by_offset", offset_markdown(rows), header,
-                                  csv_rows)
+    return write_markdown_and_csv(out_dir, "success_by_offset", OFFSET_TITLE,
+                                  offset_markdown(rows), OFFSET_HEADER, csv_rows)

@@ -18,6 +18,8 @@ A record that fails to parse or to checksum, whose trial is not one a sweep make
 TrialResult's JSON form (TrialResult.from_dict: its fields' ranges and the relations between
 them), is corrupt, and its trial runs again."""
 
+import contextlib
+import contextvars
 import hashlib
 import json
 import os
@@ -469,7 +471,11 @@ def read_record(path) -> tuple[dict | None, str | None]:
 def load_records(out_dir: Annotated[PathLike, INPUT_FOLDER]) -> LoadedRecords:
     """Reads every record under `<out_dir>/trials` (temporary files ignored; no trials folder:
     no records); UserPathError for a path that is not a folder, or a trials folder this user
-    cannot read (not one without records)."""
+    cannot read (not one without records). A folder without records reads as empty, not as
+    an error, on purpose: it is how a sweep starts (run_sweep reads its --out to resume, and a
+    new one holds none) and how a transfer's or sensitivity study's report reads a cell not
+    run yet. What needs records refuses an empty result itself, in its own words:
+    write_reports (ValueError), `tegrasp plot` and the analysis scripts."""
     folder = Path(out_dir) / TRIALS_FOLDER
     records, corrupt, others = {}, {}, []
     for path in folder_entries(folder) or []:  # UserPathError: a trials/ that cannot be read
@@ -508,6 +514,23 @@ def earlier_temporary_files(out_dir) -> list[Path]:
         return []
 
 
+# record_result's results by record (id -> (record, result)) within results_parsed_once.
+_PARSED_RESULTS = contextvars.ContextVar("tegrasp_parsed_results", default=None)
+
+
+@contextlib.contextmanager
+def results_parsed_once():
+    """Within the block, record_result parses each record's result once and gives the same
+    TrialResult again: the reports of a results folder (its tables, statistics and figures)
+    each read every record's result, about 2 ms of checks apiece. The records must not change
+    within the block (a report writer only reads them)."""
+    token = _PARSED_RESULTS.set({})
+    try:
+        yield
+    finally:
+        _PARSED_RESULTS.reset(token)
+
+
 @public_api
 def record_result(record: dict):
     """The TrialResult of a record's "result" (its JSON form), None for a record without
@@ -529,11 +552,17 @@ def record_result(record: dict):
         raise ValueError(f"record_result: the record's 'result' is not a trial's result (a "
                          f"TrialResult's JSON form, with hold_success), got "
                          f"{shorten(repr(result))}")
+    parsed = _PARSED_RESULTS.get()
+    if parsed is not None and parsed.get(id(record), (None,))[0] is record:
+        return parsed[id(record)][1]
     try:
-        return TrialResult.from_dict(result)
+        trial_result = TrialResult.from_dict(result)
     except ValueError as e:  # a record edited by hand: its file, then the field
         trial_id = record.get("trial_id")
         if not isinstance(trial_id, str):
             raise
         raise ValueError(f"record {TRIALS_FOLDER}/{record_file_name(trial_id)}: its 'result' "
                          f"is {e}") from None
+    if parsed is not None:  # the record is held with it: its id is not reused meanwhile
+        parsed[id(record)] = (record, trial_result)
+    return trial_result

@@ -9,11 +9,12 @@ from pathlib import Path
 
 from tegrasp_drake.control.controller_registry import controller_label
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_states
-from tegrasp_drake.rig.files import MARKDOWN_TABLE_START, write_atomically
+from tegrasp_drake.rig.report_files import write_report
 from tegrasp_drake.sweep.records import load_records
 from tegrasp_drake.sweep.table import AVERAGE, PAPER_TABLE1, controller_statistics, table1_rows
 
 SUMMARY_FILE = "summary.md"
+SUMMARY_START = "| controller | "  # the results table's header row, its first line
 PAPER_ROW_NAME = "the paper (real robot, memorized)"
 _SUCCESS_HEADERS = ("well-placed ~Hold", "~Unload", "misplaced ~Hold", "~Unload")
 _NONE = "–"
@@ -89,7 +90,7 @@ def summary_markdown(records) -> str:
 def write_summary(records, out_dir) -> list[Path]:
     """Writes `summary.md` into `out_dir` (atomically); returns its path in a list."""
     path = Path(out_dir) / SUMMARY_FILE
-    write_atomically(path, summary_markdown(records), start=MARKDOWN_TABLE_START)
+    write_report(path, summary_markdown(records), SUMMARY_START)
     return [path]
 
 

@@ -14,7 +14,7 @@ import numpy as np
 
 from tegrasp_drake.sweep.failure_classes import failure_class_counts, failure_classes_markdown
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controller_title
-from tegrasp_drake.rig.files import JSON_OBJECT_START, MARKDOWN_START, write_atomically
+from tegrasp_drake.rig.report_files import write_report
 from tegrasp_drake.sweep.records import mixed_records_problem, record_result
 from tegrasp_drake.sweep.spec import BUILTIN_OBJECTS
 
@@ -119,8 +119,11 @@ def _percent_text(percent) -> str:
     return "–" if percent is None else f"{percent:.0f}%"
 
 
+TABLE1_TITLE = "# Table I: grasping success rate for each object"
+
+
 def table1_markdown(rows) -> str:
-    lines = ["# Table I: grasping success rate for each object", "",
+    lines = [TABLE1_TITLE, "",
              "~Hold: held the object for 3 s. ~Unload: held it and placed it upright. "
              "Well placed: the expected position (centre marker); misplaced: the other "
              "markers. Each cell: our rate (successes/trials), then the paper's rate "
@@ -146,32 +149,60 @@ def table1_markdown(rows) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_markdown_and_csv(out_dir, stem: str, markdown: str, header: list,
+def title_start(title: str) -> str:
+    """How a Markdown report of level-1 heading `title` (`# ...`) starts: that line."""
+    return f"{title}\n"
+
+
+def csv_header_text(header: list) -> str:
+    """The header row of a CSV report (a CSV file of a table is known by it)."""
+    text = io.StringIO()
+    csv.writer(text).writerow(header)
+    return text.getvalue()
+
+
+def markdown_and_csv_starts(stem: str, title: str, header: list) -> dict[str, str]:
+    """The file names of the report table `stem` and how each starts (report_files)."""
+    return {f"{stem}.md": title_start(title), f"{stem}.csv": csv_header_text(header)}
+
+
+def write_markdown_and_csv(out_dir, stem: str, title: str, markdown: str, header: list,
                            rows: list[list]) -> list[Path]:
-    """Writes `stem`.md (the text `markdown`) and `stem`.csv (`header`, then `rows`) into
-    `out_dir`, each atomically (`markdown` opens on its `# ` title); returns their paths. Every
-    report table of a results folder is written so."""
+    """Writes `stem`.md (the text `markdown`, opening on its title line `title`) and `stem`.csv
+    (`header`, then `rows`) into `out_dir`, each atomically and only over an earlier report of
+    its kind (write_report); returns their paths. Every report table of a results folder is
+    written so."""
     out_dir = Path(out_dir)
+    starts = markdown_and_csv_starts(stem, title, header)
     markdown_path, csv_path = out_dir / f"{stem}.md", out_dir / f"{stem}.csv"
-    write_atomically(markdown_path, markdown, start=MARKDOWN_START)
-    header_text, rows_text = io.StringIO(), io.StringIO()
-    csv.writer(header_text).writerow(header)
+    write_report(markdown_path, markdown, starts[markdown_path.name])
+    rows_text = io.StringIO()
     csv.writer(rows_text).writerows(rows)
-    # A CSV file of this table is known by its header row.
-    write_atomically(csv_path, header_text.getvalue() + rows_text.getvalue(),
-                     start=header_text.getvalue().encode("utf-8"))
+    write_report(csv_path, csv_header_text(header) + rows_text.getvalue(),
+                 starts[csv_path.name])
     return [markdown_path, csv_path]
 
 
-def write_table1(records, out_dir) -> list[Path]:
-    """Writes `table1.md` and `table1.csv` into `out_dir`; returns their paths."""
-    rows = table1_rows(records)
+def table1_fieldnames() -> list[str]:
+    """The columns of table1.csv."""
     fieldnames = ["controller", "object"]
     for placement, phase in TABLE1_COLUMNS:
         name = f"{placement}_{phase}"
         fieldnames += [f"{name}_successes", f"{name}_trials", f"{name}_percent",
                        f"paper_{name}_percent"]
     fieldnames.append("errors")
+    return fieldnames
+
+
+def table1_starts() -> dict[str, str]:
+    """table1.md and table1.csv, and how each starts (report_files)."""
+    return markdown_and_csv_starts("table1", TABLE1_TITLE, table1_fieldnames())
+
+
+def write_table1(records, out_dir) -> list[Path]:
+    """Writes `table1.md` and `table1.csv` into `out_dir`; returns their paths."""
+    rows = table1_rows(records)
+    fieldnames = table1_fieldnames()
     csv_rows = []
     for row in rows:
         values = [row.controller, row.object_name]
@@ -181,8 +212,8 @@ def write_table1(records, out_dir) -> list[Path]:
                        "" if row.paper_percent is None else row.paper_percent[i]]
         values.append(row.errors)
         csv_rows.append(values)
-    return write_markdown_and_csv(out_dir, "table1", table1_markdown(rows), fieldnames,
-                                  csv_rows)
+    return write_markdown_and_csv(out_dir, "table1", TABLE1_TITLE, table1_markdown(rows),
+                                  fieldnames, csv_rows)
 
 
 # Statistics
@@ -277,8 +308,18 @@ def _number_text(value, unit="") -> str:
     return "–" if value is None else f"{value:.3g}{unit}"
 
 
+STATISTICS_TITLE = "# Trial statistics"
+
+
+def statistics_starts() -> dict[str, str]:
+    """statistics.md and statistics.json, and how each starts (report_files): the JSON
+    object's first key, sorted first."""
+    return {"statistics.md": title_start(STATISTICS_TITLE),
+            "statistics.json": '{\n "controllers": '}
+
+
 def statistics_markdown(statistics, comparisons) -> str:
-    lines = ["# Trial statistics", ""]
+    lines = [STATISTICS_TITLE, ""]
     for controller, s in statistics.items():
         lines += [f"## {controller_title(controller)}", "",
                   f"Trials: {s['trials']}, errors (not counted): {s['errors']}.", "",
@@ -319,11 +360,12 @@ def write_statistics(records, out_dir) -> list[Path]:
     counted = failure_class_counts(records)
     failures = {controller: counted[controller] for controller in statistics
                 if controller in counted}
-    write_atomically(markdown_path, statistics_markdown(statistics, comparisons) + "\n"
-                     + failure_classes_markdown(failures), start=MARKDOWN_START)
-    write_atomically(json_path, json.dumps({"controllers": statistics,
-                                            "paired_comparisons": comparisons,
-                                            "failure_classes": failures},
-                                           indent=1, sort_keys=True) + "\n",
-                     start=JSON_OBJECT_START)
+    starts = statistics_starts()
+    write_report(markdown_path, statistics_markdown(statistics, comparisons) + "\n"
+                 + failure_classes_markdown(failures), starts[markdown_path.name])
+    write_report(json_path, json.dumps({"controllers": statistics,
+                                        "paired_comparisons": comparisons,
+                                        "failure_classes": failures},
+                                       indent=1, sort_keys=True) + "\n",
+                 starts[json_path.name])
     return [markdown_path, json_path]

@@ -13,9 +13,11 @@ from tegrasp_drake.sweep.detection_report import event_trigger_rows
 from tegrasp_drake.sweep.records import load_records, record_result
 from tegrasp_drake.sweep.spec import expand_trials
 from tegrasp_drake.transfer.matrix import cell_folder, cell_name, running_sweep
-from tegrasp_drake.rig.files import MARKDOWN_START, is_folder, write_atomically
+from tegrasp_drake.rig.files import is_folder
+from tegrasp_drake.rig.report_files import write_report
 
 TABLE_FILE = "transfer.md"
+TABLE_START = "# Transfer matrix\n"  # its title line
 FIGURE_STEM = "transfer_matrix"
 
 
@@ -168,10 +170,10 @@ def write_transfer_reports(spec, out_dir, *, figure_format: str = "png") -> list
     if not rows:
         return []
     out_dir = pathlib.Path(out_dir)
-    text = ("# Transfer matrix\n\nEvents memorized in one world (row), trials run in another."
+    text = (TABLE_START + "\nEvents memorized in one world (row), trials run in another."
             " Cells: " + ", ".join(cell_name(a, b) for a, b in spec.cells) + ".\n\n"
             + transfer_markdown(rows) + not_run_note(spec, rows))
-    written = [write_atomically(out_dir / TABLE_FILE, text, start=MARKDOWN_START)]
+    written = [write_report(out_dir / TABLE_FILE, text, TABLE_START)]
     written.append(draw_transfer_heatmap(heatmap_rows(rows),
                                          figure_path(out_dir, FIGURE_STEM, figure_format)))
     return written

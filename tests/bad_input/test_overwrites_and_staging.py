@@ -616,3 +616,74 @@ def test_a_run_written_before_logs_carried_a_checksum_is_still_an_earlier_run(tm
     assert run_folder.foreign_run_file_problem(folder) is None
     with pytest.raises(TrialLogError, match="written by an earlier version of the package"):
         load_trial_log(folder / "trial.npz")
+
+
+# Rule: a sweep's, transfer's or sensitivity study's text report (Table I, the statistics,
+# the summary, success by offset, transfer.md, sensitivity.md) replaces a file under its name
+# only when that file is such a report; the user's own file there refuses the command before
+# anything runs, in one line naming it, and stays; an earlier report is replaced.
+@pytest.mark.parametrize("name", ["table1.md", "table1.csv", "statistics.md",
+                                  "statistics.json", "summary.md", "success_by_offset.csv"])
+def test_a_users_file_under_a_reports_name_refuses_the_sweep_and_stays(tmp_path, capfd, name):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / name).write_text("my own table\n")
+    code, text = run_cli(["sweep", "--spec", str(spec), "--out", str(out), "--no-progress",
+                          "--workers", "1", "--trial-function", "tests.fake_trials:fake_trial"],
+                         capfd)
+    assert_one_line_error(code, text, "tegrasp: error:", str(out), f"{name} exists and is not",
+                          "move it out of the folder, or give another --out")
+    assert code == 1, text
+    assert (out / name).read_text() == "my own table\n"
+    assert not (out / "trials").exists()
+
+
+def test_a_sweeps_earlier_reports_are_replaced(tmp_path, capfd):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [box]\ncontrollers: [open_loop]\nattempts: 1\n")
+    out = tmp_path / "out"
+    arguments = ["sweep", "--spec", str(spec), "--out", str(out), "--no-progress", "--workers",
+                 "1", "--trial-function", "tests.fake_trials:fake_trial"]
+    for _ in range(2):
+        code, text = run_cli(arguments, capfd)
+        assert code == 0, text
+    from tegrasp_drake.reports import report_starts
+    for name, start in report_starts().items():
+        assert (out / name).read_bytes().startswith(start.encode()), name
+
+
+def test_write_reports_keeps_a_users_file_under_a_reports_name(tmp_path):
+    from tegrasp_drake.reports import write_reports
+    from tegrasp_drake.rig.files import UserPathError
+    out = tmp_path / "out"
+    shutil.copytree(pathlib.Path(__file__).parents[2] / "analysis" / "results_seed0" / "trials",
+                    out / "trials")
+    (out / "summary.md").write_text("| my | own |\n")
+    with pytest.raises(UserPathError, match="summary.md exists and is not"):
+        write_reports(out)
+    assert (out / "summary.md").read_text() == "| my | own |\n"
+    assert not (out / "table1.md").exists()
+
+
+@pytest.mark.parametrize("command", ["transfer", "sensitivity"])
+def test_a_users_file_under_a_studys_report_name_refuses_it_before_anything(
+        tmp_path, capfd, monkeypatch, command):
+    if command == "transfer":
+        spec, _ = transfer_out(tmp_path)
+    else:
+        spec = tmp_path / "s.yaml"
+        spec.write_text("parameters: [gripper.position_loop_hz]\nsweep: {controllers: "
+                        "[memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n")
+    no_recording(monkeypatch)
+    out = tmp_path / "out"
+    out.mkdir(exist_ok=True)
+    (out / f"{command}.md").write_text("my notes\n")
+    before = folder_contents(out)
+    code, text = run_cli([command, str(spec), "--out", str(out), "--workers", "1",
+                          "--no-progress", *FAKE_TRIALS], capfd)
+    assert_one_line_error(code, text, "tegrasp: error:", f"{command}.md exists and is not")
+    assert code == 1, text
+    assert folder_contents(out) == before
+    assert (out / f"{command}.md").read_text() == "my notes\n"

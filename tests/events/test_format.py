@@ -311,3 +311,23 @@ def test_saving_refuses_events_the_reader_refuses_and_keeps_the_folder(tmp_path,
         save_memorized_events(tmp_path, mix(box, thin))
     assert str(tmp_path / "box") in str(error.value) and "nothing was saved" in str(error.value)
     assert {p: p.read_bytes() for p in tmp_path.rglob("*") if p.is_file()} == before
+
+
+# Rule: an event's windows are checked for their shape and type before they are converted: a
+# huge array (100 million rows) is refused from its shape, with no copy of it made.
+@pytest.mark.parametrize("window, words", [
+    (np.broadcast_to(np.zeros(1), (100_000_000, 2)), "'sa' has shape (100000000, 2)"),
+    (np.zeros((2, 100), dtype=complex), "'sa' holds complex128 values, not real numbers"),
+])
+def test_an_events_window_is_refused_from_its_shape_before_it_is_converted(window, words,
+                                                                          monkeypatch):
+    convert = np.array
+
+    def no_large_copy(value, *args, **kwargs):
+        assert np.size(value) < 1_000_000, "a huge window was copied before its shape was checked"
+        return convert(value, *args, **kwargs)
+    monkeypatch.setattr(np, "array", no_large_copy)
+    with pytest.raises(ValueError) as refused:
+        MemorizedEvent(object_name="box", transition="reach_load", sa=window,
+                       ra=np.zeros((2, 100)), sa_rate_hz=200.0, ra_rate_hz=200.0)
+    assert str(refused.value).startswith(words), refused.value

@@ -148,17 +148,43 @@ def test_a_killed_report_write_keeps_the_earlier_reports_and_the_next_leaves_no_
     import subprocess
     import sys
     from tests.killed_runs import environment, killed_before_rename
+    from tegrasp_drake.reports import report_starts
     from tegrasp_drake.sweep.records import write_record
     for record in records(objects=("box",)):
         write_record(tmp_path, record)
-    earlier = ("table1.md", "table1.csv", "statistics.md", "statistics.json", "summary.md")
-    for name in earlier:
-        (tmp_path / name).write_text("the earlier report")
+    earlier = {name: start + "the earlier report" for name, start in report_starts().items()}
+    for name, text in earlier.items():
+        (tmp_path / name).write_bytes(text.encode())
     statements = ("from tegrasp_drake.reports import write_reports\n"
                   f"write_reports({str(tmp_path)!r})")
     killed_before_rename(statements)
-    assert all((tmp_path / name).read_text() == "the earlier report" for name in earlier)
+    assert all((tmp_path / name).read_bytes() == text.encode() for name, text in earlier.items())
     subprocess.run([sys.executable, "-c", statements], env=environment(), check=True,
                    timeout=300)  # a bound on a hang, not a measure of speed
     assert not [path.name for path in tmp_path.iterdir() if path.name.startswith(".")]
-    assert all((tmp_path / name).read_text() != "the earlier report" for name in earlier)
+    assert all((tmp_path / name).read_bytes() != text.encode() for name, text in earlier.items())
+
+
+# Rule: writing a results folder's reports parses each record's result once, not once for
+# every table and figure that reads it; outside write_reports every call parses it again.
+def test_the_reports_parse_each_records_result_once(tmp_path, monkeypatch):
+    from tegrasp_drake.scenario.trial_result import TrialResult
+    from tegrasp_drake.sweep.records import record_result, write_record
+    written = records(objects=("box",))
+    for record in written:
+        write_record(tmp_path, record)
+    parsed = []
+    from_dict = TrialResult.from_dict.__func__
+
+    def counted(cls, data):
+        parsed.append(data)
+        return from_dict(cls, data)
+    monkeypatch.setattr(TrialResult, "from_dict", classmethod(counted))
+    write_reports(tmp_path)
+    finished = [record for record in written if record["result"] is not None]
+    # each twice: once when load_records checks it, once for all the tables and figures
+    assert len(parsed) == 2 * len(finished)
+    parsed.clear()
+    record_result(finished[0])
+    record_result(finished[0])
+    assert len(parsed) == 2
