@@ -229,18 +229,23 @@ def test_a_sweep_into_a_folder_another_run_holds_is_an_error_outside_the_run(tmp
     assert not (out / "trials").exists()
 
 
+def one_cell_study_spec(tmp_path, command):
+    """A `tegrasp transfer` or `tegrasp sensitivity` spec of one cell, in tmp_path."""
+    if command == "transfer":
+        return transfer_out(tmp_path)[0]
+    spec = tmp_path / "s.yaml"
+    spec.write_text("parameters: [gripper.position_loop_hz]\nsweep: {controllers: "
+                    "[memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n")
+    return spec
+
+
 # Rule: a transfer or a sensitivity study holds its whole --out (the sweep runner's lock)
 # before it records or writes anything, so a second run into the folder is refused at once
 # (exit 1), not after recording every world's events again beside the first.
 @pytest.mark.parametrize("command", ["transfer", "sensitivity"])
 def test_a_second_study_into_a_held_out_is_refused_before_anything(tmp_path, capfd,
                                                                    monkeypatch, command):
-    if command == "transfer":
-        spec, _ = transfer_out(tmp_path)
-    else:
-        spec = tmp_path / "s.yaml"
-        spec.write_text("parameters: [gripper.position_loop_hz]\nsweep: {controllers: "
-                        "[memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n")
+    spec = one_cell_study_spec(tmp_path, command)
     no_recording(monkeypatch)
     out = tmp_path / "out"
     with _held(out):
@@ -670,12 +675,7 @@ def test_write_reports_keeps_a_users_file_under_a_reports_name(tmp_path):
 @pytest.mark.parametrize("command", ["transfer", "sensitivity"])
 def test_a_users_file_under_a_studys_report_name_refuses_it_before_anything(
         tmp_path, capfd, monkeypatch, command):
-    if command == "transfer":
-        spec, _ = transfer_out(tmp_path)
-    else:
-        spec = tmp_path / "s.yaml"
-        spec.write_text("parameters: [gripper.position_loop_hz]\nsweep: {controllers: "
-                        "[memorized], attempts: 1, objects: [box], grid: [[0.0, 0.0]]}\n")
+    spec = one_cell_study_spec(tmp_path, command)
     no_recording(monkeypatch)
     out = tmp_path / "out"
     out.mkdir(exist_ok=True)
