@@ -17,7 +17,8 @@ import numpy as np
 
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
 from tegrasp_drake.rig.files import (JsonFileError, NotAFileError, error_line, load_json,
-                                     one_line, read_bounded, read_json_file)
+                                     one_line, read_bounded, read_error_remedy,
+                                     read_json_file)
 from tegrasp_drake.rig.objects import (BUILTIN_OBJECTS, DESCRIPTION_FIELDS, ObjectConfig,
                                        description_differences, object_name_problem)
 from tegrasp_drake.tactile.sampling import samples_per_window
@@ -50,9 +51,9 @@ class MemorizedEventError(Exception):
         super().__init__(error_line(f"{self.path}: {problem}. {remedy}"))
 
 
-# What to do about an event file or index this user cannot read (no permission, an I/O
-# error): it is not damaged, so remaking it is no remedy.
-UNREADABLE_REMEDY = "Ask its owner to make it readable, or give an events folder you can read."
+def _sentence(words: str) -> str:
+    """`words` begun with a capital and ended with a full stop (a remedy's sentence)."""
+    return words[:1].upper() + words[1:] + "."
 
 
 def remake_advice(object_name: str | None) -> str:
@@ -139,8 +140,11 @@ def _read_json(path: pathlib.Path, expected_format: str, object_name: str | None
         return read_json_file(path, limit=MAX_EVENT_FILE_BYTES, check=format_problem,
                               kind="an event file or index")
     except JsonFileError as error:
+        # A file this user cannot read (no permission, an I/O error) is not damaged, so
+        # remaking it is no remedy.
         raise MemorizedEventError(path, error.problem, object_name, remedy=(
-            UNREADABLE_REMEDY if error.unreadable else None)) from None
+            _sentence(read_error_remedy(error.unreadable))
+            if error.unreadable else None)) from None
 
 
 @functools.lru_cache(maxsize=16)

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from tegrasp_drake.rig.files import (JSON_OBJECT_START, JsonFileError, UserPathError,
-                                     folder_entries, read_json_file,
+                                     folder_entries, read_error_remedy, read_json_file,
                                      remove_stale_staging_files_in, replace_problem,
                                      write_atomically)
 from tegrasp_drake.rig.api_boundary import INPUT_FOLDER, PathLike, public_api
@@ -460,9 +460,9 @@ def read_record(path) -> tuple[dict | None, str | None]:
                                 check=lambda data: check_record(data, Path(path).name))
     except JsonFileError as error:
         if error.unreadable is not None:
-            raise UserPathError(f"trial record {path}: {error.problem}; ask its owner to make "
-                                "it readable, or give a folder you can read; it was neither "
-                                "set aside nor run again", error.unreadable) from None
+            raise UserPathError(f"trial record {path}: {error.problem}; "
+                                f"{read_error_remedy(error.unreadable)}; it was neither set "
+                                "aside nor run again", error.unreadable) from None
         return None, error.problem
     return record, None
 

@@ -3,6 +3,8 @@ is said to be one that could not be read, with the system's error, never to be t
 corrupt or damaged: its content is not in question, and it is not to be remade."""
 
 import errno
+import pathlib
+import shutil
 import zipfile
 
 import pytest
@@ -57,3 +59,35 @@ def test_a_spec_that_fails_part_way_is_a_file_that_cannot_be_read(tmp_path, capf
     assert_one_line_error(code, text, f"{spec}: cannot read the sweep spec: Input/output "
                           "error; the system could not read it")
     assert "owner" not in text
+
+
+@pytest.fixture
+def json_reads_fail_part_way(monkeypatch):
+    """Every bounded read of a JSON file (event files, indexes, trial records) fails with EIO."""
+    from tegrasp_drake.rig import files
+    monkeypatch.setattr(files, "read_bounded", _input_output_error)
+
+
+def test_an_event_file_that_fails_part_way_is_neither_damaged_nor_its_owners(
+        json_reads_fail_part_way):
+    from tegrasp_drake.events.event_file import MemorizedEventError, read_memorized_event
+    path = next((pathlib.Path(__file__).parents[2] / "events" / "box").glob("*.json"))
+    with pytest.raises(MemorizedEventError) as refused:
+        read_memorized_event(path)
+    text = str(refused.value)
+    assert "Input/output error" in text and "says nothing of its content" in text, text
+    assert not any(word in text for word in ("owner", "corrupt", "damaged", "record-events"))
+
+
+def test_a_trial_record_that_fails_part_way_is_neither_set_aside_nor_its_owners(
+        tmp_path, json_reads_fail_part_way):
+    from tegrasp_drake.rig.files import UserPathError
+    from tegrasp_drake.sweep.records import read_record
+    record = tmp_path / "memorized.box.m00.a0.json"
+    shutil.copy(pathlib.Path(__file__).parents[2] / "analysis" / "results_seed0" / "trials"
+                / record.name, record)
+    with pytest.raises(UserPathError) as refused:
+        read_record(record)
+    text = str(refused.value)
+    assert "Input/output error" in text and "says nothing of its content" in text, text
+    assert "neither set aside nor run again" in text and "owner" not in text, text
