@@ -5,7 +5,8 @@ and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib
 import os
 import pathlib
 
-from tegrasp_drake.rig.files import UserPathError, temporary_sibling, write_error_remedy
+from tegrasp_drake.rig.files import (NotAFileError, UserPathError, existing_file_head,
+                                     temporary_sibling, write_error_remedy)
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
 # How a figure file of each format starts, as matplotlib writes it: PNG's signature (PNG
@@ -72,13 +73,15 @@ def figure_replace_problem(path, *, overwrite: bool = True) -> str | None:
         return ("is a symbolic link (a figure is written as a file, never over a link); give "
                 "another file name, or remove the link yourself")
     try:
-        with open(path, "rb") as existing:
-            head = existing.read(1024)
-    except (FileNotFoundError, NotADirectoryError):
-        return None
+        head = existing_file_head(path, 1024)
+    except NotAFileError as error:
+        kind = error.strerror.split(",")[0]  # "is a folder", "is a named pipe (FIFO)", ...
+        return f"{kind} where a figure belongs; give another file name, or move it away"
     except OSError as error:
         return (f"cannot be read to check what it is ({error.strerror or error}); give another "
                 "file name")
+    if head is None:
+        return None
     figure_format = path.suffix.lstrip(".").lower()
     if not head:
         return (f"exists and is empty (0 bytes), not a .{figure_format} figure: a file there "

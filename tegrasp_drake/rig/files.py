@@ -15,6 +15,7 @@ import re
 import shutil
 import signal
 import stat
+import sys
 import tempfile
 import threading
 
@@ -691,6 +692,19 @@ def open_bounded(path, limit: int):
         os.close(descriptor)
         raise
     return stream, status.st_size
+
+
+def existing_file_head(path, size: int) -> bytes | None:
+    """The first `size` bytes of the file at `path`, or None when nothing is there: what an
+    output about to be replaced holds. NotAFileError for a folder, FIFO, socket or device
+    (opened without blocking and checked from fstat, so a named pipe never stalls the check);
+    other OSErrors pass on."""
+    try:
+        stream, _ = open_bounded(path, sys.maxsize)
+    except (FileNotFoundError, NotADirectoryError):
+        return None
+    with stream:
+        return stream.read(size)
 
 
 def read_bounded(path, limit: int) -> bytes:

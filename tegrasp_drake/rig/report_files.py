@@ -9,7 +9,8 @@ figure_files does for figures."""
 import pathlib
 
 from tegrasp_drake.rig.echo import shown
-from tegrasp_drake.rig.files import UserPathError, write_atomically
+from tegrasp_drake.rig.files import (NotAFileError, UserPathError, existing_file_head,
+                                     write_atomically)
 
 _HEAD_BYTES = 4096  # more than any report's start
 
@@ -21,16 +22,14 @@ def report_replace_problem(path, start: str, kind: str = "report",
     or a file starting with `start` (one `writer` wrote); the user's notes, or another
     report, are never replaced. Only the head is read."""
     try:
-        with open(path, "rb") as existing:
-            head = existing.read(max(_HEAD_BYTES, len(start.encode("utf-8"))))
-    except (FileNotFoundError, NotADirectoryError):
-        return None
-    except IsADirectoryError:
-        return "is a folder where a file belongs; move it away, or give another file name"
+        head = existing_file_head(path, max(_HEAD_BYTES, len(start.encode("utf-8"))))
+    except NotAFileError as error:
+        kind = error.strerror.split(",")[0]  # "is a folder", "is a named pipe (FIFO)", ...
+        return f"{kind} where a file belongs; move it away, or give another file name"
     except OSError as error:
         return (f"cannot be read to check what it is ({error.strerror or error}); give another "
                 "file name")
-    if head.startswith(start.encode("utf-8")):
+    if head is None or head.startswith(start.encode("utf-8")):
         return None
     first = head.split(b"\n", 1)[0].rstrip(b"\r").decode("utf-8", errors="replace")
     return (f"exists and is not a {kind} {writer} writes (its first line is "

@@ -15,6 +15,7 @@ import signal
 import struct
 import subprocess
 import sys
+import threading
 import time
 
 import numpy as np
@@ -643,6 +644,26 @@ def test_a_users_file_under_a_reports_name_refuses_the_sweep_and_stays(tmp_path,
     assert code == 1, text
     assert (out / name).read_text() == "my own table\n"
     assert not (out / "trials").exists()
+
+
+# Rule: a named pipe or a folder under a report's or a figure's name is said to be one,
+# without waiting on the pipe for a writer (an open for reading would block).
+@pytest.mark.parametrize("kind, words", [("fifo", "is a named pipe (FIFO) where a"),
+                                         ("folder", "is a folder where a")])
+def test_a_pipe_or_folder_under_a_reports_or_figures_name_is_said_at_once(tmp_path, kind,
+                                                                           words):
+    from tegrasp_drake.figures.figure_files import figure_replace_problem
+    from tegrasp_drake.rig.report_files import report_replace_problem
+    checks = {"table1.md": lambda path: report_replace_problem(path, "# Table I"),
+              "states.png": figure_replace_problem}
+    for name, check in checks.items():
+        path = tmp_path / name
+        os.mkfifo(path) if kind == "fifo" else path.mkdir()
+        found = []
+        checking = threading.Thread(target=lambda: found.append(check(path)), daemon=True)
+        checking.start()
+        checking.join(timeout=60)  # a hang guard: the check reads no byte of a pipe
+        assert found and found[0].startswith(words), (name, found)
 
 
 def test_a_sweeps_earlier_reports_are_replaced(tmp_path, capfd):
