@@ -27,7 +27,7 @@ from tegrasp_drake.rig.ranges import FAULT_DELAY
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
-from tegrasp_drake.rig.files import output_file_problem
+from tegrasp_drake.rig.files import existing_file_head, output_file_problem
 
 logger = logging.getLogger(__name__)
 
@@ -157,8 +157,7 @@ def _check_config_target(path) -> None:
         raise SystemExit(f"{ERROR_LEAD}--write-config {path} {problem}")
     if path.exists():
         try:  # the first line only: a huge file is no config emulate wrote, and not read
-            with open(path, "rb") as existing:
-                head = existing.read(len(WRITTEN_BY_EMULATE.encode()) + 1)
+            head = existing_file_head(path, len(WRITTEN_BY_EMULATE.encode()) + 1) or b""
             first = head.decode("utf-8", errors="replace").split("\n", 1)[0]
         except OSError as e:
             raise SystemExit(f"{ERROR_LEAD}--write-config {path}: cannot read it "

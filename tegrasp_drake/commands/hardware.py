@@ -16,8 +16,8 @@ from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
                                                write_result)
-from tegrasp_drake.rig.files import (error_line, free_space_problem, interruptions_deferred,
-                                     output_file_problem)
+from tegrasp_drake.rig.files import (error_line, existing_file_head, free_space_problem,
+                                     interruptions_deferred, output_file_problem)
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.number_text import (NumberTextError, TypedNumber, count_text,
@@ -315,8 +315,7 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
     remedy = "give another --log, or remove it yourself"
     if is_log:
         try:
-            with open(path, "rb") as existing:
-                head = existing.read(len(LCM_LOG_START))
+            head = existing_file_head(path, len(LCM_LOG_START)) or b""
         except OSError as error:
             return f"cannot be read to check what it is ({error.strerror or error}); {remedy}"
         if head and head != LCM_LOG_START:

@@ -6,7 +6,7 @@ import pathlib
 import sys
 
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
-from tegrasp_drake.rig.files import output_file_problem, write_atomically
+from tegrasp_drake.rig.files import existing_file_head, output_file_problem, write_atomically
 
 HTML_START = b"<!DOCTYPE html>"  # how Meshcat.StaticHtml's page starts (an HTML5 document)
 REPLAY_TITLE = b"<title>Drake MeshCat</title>"  # in that page's head, within its first kB
@@ -40,8 +40,7 @@ def _replacing_problem(path: pathlib.Path, args) -> str | None:
     if not path.exists():
         return None
     try:  # the head only: a huge file is no page of ours, and is not read
-        with open(path, "rb") as existing:
-            head = existing.read(1024)
+        head = existing_file_head(path, 1024) or b""
     except OSError as e:
         return f"cannot be read to check what it is ({e.strerror or e}); give another file name"
     if not (head.startswith(HTML_START) and REPLAY_TITLE in head):

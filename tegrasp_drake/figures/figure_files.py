@@ -55,11 +55,10 @@ def starts_as_figure(path) -> bool:
     the head is read; False when it cannot be."""
     path = check_figure_path(path)
     try:
-        with open(path, "rb") as existing:
-            head = existing.read(1024)
+        head = existing_file_head(path, 1024)
     except OSError:
         return False
-    return head.startswith(FIGURE_STARTS[path.suffix.lstrip(".").lower()])
+    return head is not None and head.startswith(FIGURE_STARTS[path.suffix.lstrip(".").lower()])
 
 
 def figure_replace_problem(path, *, overwrite: bool = True) -> str | None:
