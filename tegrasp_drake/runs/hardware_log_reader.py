@@ -172,8 +172,7 @@ MAX_EVENT_GAP = 1_000_000  # event numbers further ahead than this are damaged o
 # 1.1 GB for one of tactile messages only (816,000 ticks), about 1.5 GB for one of arm
 # statuses only (decoded as messages, 1.4 kB each).
 MAX_RUN_LOG_BYTES = 2**28
-# The largest LCM log scan_lcm_log counts (a run's own log, BusLogWriter.messages): it holds
-# the file's bytes and its events, not a replay.
+# The largest LCM log scan_lcm_log reads whole (its bytes and events held, not a replay).
 MAX_SCANNED_LOG_BYTES = 2**30
 
 
@@ -293,6 +292,14 @@ def scan_lcm_log(path) -> tuple[list, list[str]]:
     """The events of an LCM log file, [(timestamp [us], channel, data)], and its damage in
     words (LcmEventScan), the file read whole (read_bounded)."""
     return _scan_lcm_bytes(read_bounded(path, MAX_SCANNED_LOG_BYTES))
+
+
+def count_lcm_log_events(path) -> int:
+    """How many whole events the LCM log file at `path` holds (LcmEventScan over the file
+    read a window at a time: one event held at a time, whatever the log's size)."""
+    stream, size = open_bounded(path, MAX_SCANNED_LOG_BYTES)
+    with stream:
+        return sum(1 for _ in LcmEventScan(FileWindow(stream, size)))
 
 
 def _not_lcm_log_problem(data) -> str | None:

@@ -42,7 +42,7 @@ from tegrasp_drake.scenario.scenario import Scenario, rechecked
 from tegrasp_drake.rig.ranges import HARDWARE_RUN_DURATION
 from tegrasp_drake.rig.number_text import count_text
 from tegrasp_drake.rig.api_boundary import SEARCHED_FOLDER, PathLike, public_api
-from tegrasp_drake.runs.hardware_log_reader import scan_lcm_log
+from tegrasp_drake.runs.hardware_log_reader import count_lcm_log_events
 
 END_MARGIN_S = 0.5  # [s] the run goes on this long after Done, Failed or a fault
 LOGGER_SUBSCRIBE_S = 0.2  # [s] given to lcm-logger to subscribe once its file exists
@@ -139,13 +139,13 @@ class BusLogWriter:
     @property
     def messages(self) -> int:
         """The messages the log holds whole; 0 when nothing was recorded or the file was
-        removed (problem() says so). Counted by scan_lcm_log, which bounds each event by the
-        bytes read; lcm.EventLog allocates an event's declared length first and crashes the
-        process on a corrupt one (a data length of 2^31-1)."""
+        removed (problem() says so). Counted by count_lcm_log_events, which bounds each event
+        by the bytes read; lcm.EventLog allocates an event's declared length first and
+        crashes the process on a corrupt one (a data length of 2^31-1)."""
         if self._process is None:
             return 0
         try:
-            return len(scan_lcm_log(self.path)[0])
+            return count_lcm_log_events(self.path)
         except FileNotFoundError:
             return 0
 

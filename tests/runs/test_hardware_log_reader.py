@@ -409,8 +409,10 @@ class _RecordedReads:
         self._stream.close()
 
 
-def test_a_run_log_is_read_in_bounded_reads(run_log_path, monkeypatch):
-    """The reader reads the file a window at a time (FileWindow), never all of it at once."""
+@pytest.mark.parametrize("read", ["read_run_log", "count_lcm_log_events"])
+def test_a_run_log_is_read_in_bounded_reads(run_log_path, monkeypatch, read):
+    """The replay's reader and the hardware run's count of what it logged read the file a
+    window at a time (FileWindow), never all of it at once."""
     import functools
     from tegrasp_drake.runs import hardware_log_reader as reader
     window, streams = 64 * 1024, []
@@ -423,11 +425,14 @@ def test_a_run_log_is_read_in_bounded_reads(run_log_path, monkeypatch):
     monkeypatch.setattr(reader, "open_bounded", recorded)
     monkeypatch.setattr(reader, "FileWindow", functools.partial(reader.FileWindow,
                                                                 window=window))
-    log = read_run_log(run_log_path)
+    read_back = getattr(reader, read)(run_log_path)
     sizes = streams[0].sizes
     assert run_log_path.stat().st_size > 10 * window
     assert sizes and all(0 <= size <= window for size in sizes), sizes
-    assert log.message_counts[TACTILE_CHANNEL] == len(synthetic_grasp(GRASP).t_ra)
+    if read == "read_run_log":
+        assert read_back.message_counts[TACTILE_CHANNEL] == len(synthetic_grasp(GRASP).t_ra)
+    else:
+        assert read_back == len(reader.scan_lcm_log(run_log_path)[0])
 
 
 def test_a_tactile_message_read_back_holds_its_channels_exactly(run_log_path):
