@@ -5,7 +5,7 @@ and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib
 import os
 import pathlib
 
-from tegrasp_drake.rig.files import (NotAFileError, UserPathError, existing_file_head,
+from tegrasp_drake.rig.files import (UserPathError, existing_file_head, existing_output_head,
                                      temporary_sibling, write_error_remedy)
 
 FIGURE_FORMATS = ("png", "pdf", "svg")
@@ -71,14 +71,10 @@ def figure_replace_problem(path, *, overwrite: bool = True) -> str | None:
     if os.path.islink(path):
         return ("is a symbolic link (a figure is written as a file, never over a link); give "
                 "another file name, or remove the link yourself")
-    try:
-        head = existing_file_head(path, 1024)
-    except NotAFileError as error:
-        kind = error.strerror.split(",")[0]  # "is a folder", "is a named pipe (FIFO)", ...
-        return f"{kind} where a figure belongs; give another file name, or move it away"
-    except OSError as error:
-        return (f"cannot be read to check what it is ({error.strerror or error}); give another "
-                "file name")
+    head, problem = existing_output_head(
+        path, 1024, "a figure belongs; give another file name, or move it away")
+    if problem:
+        return problem
     if head is None:
         return None
     figure_format = path.suffix.lstrip(".").lower()

@@ -707,6 +707,20 @@ def existing_file_head(path, size: int) -> bytes | None:
         return stream.read(size)
 
 
+def existing_output_head(path, size: int, belongs: str) -> tuple[bytes | None, str | None]:
+    """(existing_file_head, None), or (None, why) in words that follow the path when what is
+    there cannot be looked at: a folder, pipe, socket or device where `belongs` ("a file
+    belongs; move it away, or give another file name"), or a read the system refused."""
+    try:
+        return existing_file_head(path, size), None
+    except NotAFileError as error:
+        kind = error.strerror.split(",")[0]  # "is a folder", "is a named pipe (FIFO)", ...
+        return None, f"{kind} where {belongs}"
+    except OSError as error:
+        return None, (f"cannot be read to check what it is ({error.strerror or error}); give "
+                      "another file name")
+
+
 def read_bounded(path, limit: int) -> bytes:
     """The bytes of the file at `path`: open_bounded's checks, then a file that grows while
     read is still held to `limit` by the read."""

@@ -9,8 +9,7 @@ figure_files does for figures."""
 import pathlib
 
 from tegrasp_drake.rig.echo import shown
-from tegrasp_drake.rig.files import (NotAFileError, UserPathError, existing_file_head,
-                                     write_atomically)
+from tegrasp_drake.rig.files import UserPathError, existing_output_head, write_atomically
 
 _HEAD_BYTES = 4096  # more than any report's start
 
@@ -21,14 +20,11 @@ def report_replace_problem(path, start: str, kind: str = "report",
     may not replace the file at `path`, in words that follow it, or None: nothing is there,
     or a file starting with `start` (one `writer` wrote); the user's notes, or another
     report, are never replaced. Only the head is read."""
-    try:
-        head = existing_file_head(path, max(_HEAD_BYTES, len(start.encode("utf-8"))))
-    except NotAFileError as error:
-        kind = error.strerror.split(",")[0]  # "is a folder", "is a named pipe (FIFO)", ...
-        return f"{kind} where a file belongs; move it away, or give another file name"
-    except OSError as error:
-        return (f"cannot be read to check what it is ({error.strerror or error}); give another "
-                "file name")
+    head, problem = existing_output_head(
+        path, max(_HEAD_BYTES, len(start.encode("utf-8"))),
+        "a file belongs; move it away, or give another file name")
+    if problem:
+        return problem
     if head is None or head.startswith(start.encode("utf-8")):
         return None
     first = head.split(b"\n", 1)[0].rstrip(b"\r").decode("utf-8", errors="replace")
