@@ -4,13 +4,13 @@ line on stderr and a non-zero exit code, never a Python traceback, never success
 
 import os
 import subprocess
-import sys
 
 import pytest
 
 from tegrasp_drake.commands.error_boundary import EXIT_ERROR, EXIT_USAGE
 from tegrasp_drake.sweep import SweepSpec, run_sweep
 from tests.analysis_script import ANALYSIS, load_analysis_script
+from tests.forked_runs import run_analysis_script
 from tests.fake_trials import fake_trial
 
 # The scripts that take no file or folder from the user, and why they are not run here.
@@ -55,10 +55,7 @@ SCRIPTS = sorted(path.stem for path in ANALYSIS.glob("*.py"))
 
 def run_script(name: str, arguments: list[str], cwd) -> subprocess.CompletedProcess:
     """analysis/`name`.py run as a user runs it, from `cwd` (not the repository)."""
-    environment = dict(os.environ, PYTHONPATH=str(ANALYSIS.parent), MPLBACKEND="Agg")
-    return subprocess.run([sys.executable, str(ANALYSIS / f"{name}.py"), *arguments],
-                          cwd=cwd, env=environment, capture_output=True, text=True,
-                          stdin=subprocess.DEVNULL, timeout=300)
+    return run_analysis_script(name, arguments, cwd)
 
 
 def test_every_script_is_listed():
@@ -200,11 +197,7 @@ def test_hold_creep_refuses_a_folder_without_records(tmp_path):
 
 def run_script_into_full_disk(name: str, arguments: list[str], cwd):
     """run_script with its standard output on /dev/full (a disk with no room)."""
-    environment = dict(os.environ, PYTHONPATH=str(ANALYSIS.parent), MPLBACKEND="Agg")
-    with open("/dev/full", "w") as full:
-        return subprocess.run([sys.executable, str(ANALYSIS / f"{name}.py"), *arguments],
-                              cwd=cwd, env=environment, stdout=full, stderr=subprocess.PIPE,
-                              text=True, stdin=subprocess.DEVNULL, timeout=300)
+    return run_analysis_script(name, arguments, cwd, stdout="/dev/full")
 
 
 @pytest.mark.parametrize("name", SCRIPTS)

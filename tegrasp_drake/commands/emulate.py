@@ -21,7 +21,7 @@ from tegrasp_drake.hardware.robotiq.modbus_client import quiet_modbus_library
 from tegrasp_drake.emulators.launcher import DEVICES as EMULATED_DEVICES
 from tegrasp_drake.emulators.launcher import (SYNC_MODES, WRITTEN_BY_EMULATE, Emulators,
                                               FaultInjection)
-from tegrasp_drake.hardware.config import (DEFAULT_LCM_URL, lcm_url_option, lcm_url_origin,
+from tegrasp_drake.hardware.config import (default_lcm_url, lcm_url_option, lcm_url_origin,
                                            shared_lcm_url_problem)
 from tegrasp_drake.rig.ranges import FAULT_DELAY
 from tegrasp_drake.rig.echo import shorten, shown
@@ -58,7 +58,7 @@ def register(subparsers) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("device", choices=DEVICES)
     add_scenario_arguments(parser)
-    parser.add_argument("--lcm-url", default=DEFAULT_LCM_URL, type=lcm_url_option,
+    parser.add_argument("--lcm-url", default=default_lcm_url(), type=lcm_url_option,
                         help="the arm's LCM bus, which also carries the emulated gripper's "
                         "state (default: %(default)s)")
     parser.add_argument("--trial", metavar="NPZ",

@@ -39,17 +39,22 @@ from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_ins
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.rig.echo import shorten, shown
 
-# LCM's own default bus, or the one LCM_DEFAULT_URL names (as lcm.LCM() itself reads it).
 LCM_URL_VARIABLE = "LCM_DEFAULT_URL"
-DEFAULT_LCM_URL = (os.environ.get(LCM_URL_VARIABLE, "").strip()
-                   or "udpm://239.255.76.67:7667?ttl=0")
+LCM_OWN_DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
+
+
+def default_lcm_url() -> str:
+    """LCM's own default bus, or the one LCM_DEFAULT_URL names now: read when a default is
+    needed, as lcm.LCM() reads it when a bus is made (a script that sets the variable after
+    importing this package gets its bus)."""
+    return os.environ.get(LCM_URL_VARIABLE, "").strip() or LCM_OWN_DEFAULT_URL
 
 
 def lcm_url_origin(url: str, field: str) -> str:
     """Where a message says `url` came from: the LCM_DEFAULT_URL environment variable when it
     set the default and `url` is that default (the user wrote no `field`, and fixes the
     variable), else `field` ("field 'arm.lcm_url'", "--lcm-url")."""
-    if os.environ.get(LCM_URL_VARIABLE, "").strip() and url == DEFAULT_LCM_URL:
+    if os.environ.get(LCM_URL_VARIABLE, "").strip() and url == default_lcm_url():
         return f"the environment variable {LCM_URL_VARIABLE} (the default of {field})"
     return field
 
@@ -59,7 +64,7 @@ def lcm_url_origin(url: str, field: str) -> str:
 class JacoLcmDriver:
     """The JACO2 through the Kinova LCM driver (joint-velocity mode, 100 Hz) on `lcm_url`
     (`?ttl=0` keeps multicast on this host), Drake's KINOVA_JACO_{COMMAND,STATUS} channels."""
-    lcm_url: str = DEFAULT_LCM_URL
+    lcm_url: str = dataclasses.field(default_factory=default_lcm_url)
     tracker: JacoVelocityTrackerConfig = dataclasses.field(
         default_factory=JacoVelocityTrackerConfig)
 

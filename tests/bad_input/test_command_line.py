@@ -692,7 +692,7 @@ def test_a_control_character_in_an_analysis_script_argument_is_refused_naming_it
 # (LCM_DEFAULT_URL), is bad input, exit 1, naming the option it is the default of.
 def test_a_control_character_in_an_environment_default_is_bad_input(monkeypatch, capfd):
     from tegrasp_drake.commands import emulate
-    monkeypatch.setattr(emulate, "DEFAULT_LCM_URL", "udpm://239.255.76.67:7667\x1b[2J")
+    monkeypatch.setattr(emulate, "default_lcm_url", lambda: "udpm://239.255.76.67:7667\x1b[2J")
     code, text = run_cli(["emulate", "jaco", "--scheduling", "normal"], capfd)
     assert code == 1, text
     assert_one_line_error(code, text, "--lcm-url holds an escape (character 0x1b)")

@@ -3,12 +3,11 @@ process shares, a file URL that would overwrite a user's file, or a bad LCM_DEFA
 refused in one line naming it, and the file is left whole."""
 
 import os
-import subprocess
-import sys
 
 import pytest
 
 from tests.bad_input.probes import assert_one_line_error, run_cli
+from tests.forked_runs import run_tegrasp
 
 
 def test_a_bus_inside_the_process_is_said_not_to_be_logged(tmp_path):
@@ -75,9 +74,7 @@ def test_an_lcm_url_option_or_address_lcm_would_not_take_is_refused_naming_it(
     (tmp_path / "hw.yaml").write_text(hardware_config_to_yaml(HardwareStationConfig()))
     if option == "--lcm-url":
         # in a process of its own: an emulator that took the URL would run until stopped
-        run = subprocess.run([sys.executable, "-m", "tegrasp_drake", "emulate", "jaco",
-                              "--lcm-url", url], cwd=tmp_path, capture_output=True, text=True,
-                             timeout=120)
+        run = run_tegrasp(["emulate", "jaco", "--lcm-url", url], tmp_path, timeout_s=120)
         code, text = run.returncode, run.stderr + run.stdout
     else:
         code, text = run_cli(["hardware", "--config", "hw.yaml", "--config-set",
@@ -144,9 +141,8 @@ def test_an_lcm_url_of_a_provider_no_bus_is_stays_bad_input(capfd):
 
 
 def test_an_lcm_default_url_variable_that_does_not_parse_is_named_not_the_option(tmp_path):
-    run = subprocess.run([sys.executable, "-m", "tegrasp_drake", "emulate", "jaco"],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120,
-                         env={**os.environ, "LCM_DEFAULT_URL": "udpm://239.255.76.99:y"})
+    run = run_tegrasp(["emulate", "jaco"], tmp_path, timeout_s=120,
+                      env={**os.environ, "LCM_DEFAULT_URL": "udpm://239.255.76.99:y"})
     assert run.returncode == 1, run.stderr
     assert_one_line_error(run.returncode, run.stderr, "tegrasp: error: the environment "
                           "variable LCM_DEFAULT_URL (the default of --lcm-url) "
@@ -208,9 +204,8 @@ def test_an_lcm_url_option_out_of_range_in_a_hardware_config_names_the_field(tmp
 def test_a_bad_lcm_default_url_variable_is_named(tmp_path, command):
     (tmp_path / "hw.yaml").write_text("gripper: {port: /dev/ttyUSB0}\n")
     bad = "udpm://239.255.76.67:99999?ttl=0"
-    run = subprocess.run([sys.executable, "-m", "tegrasp_drake", *command], cwd=tmp_path,
-                         capture_output=True, text=True, timeout=120,
-                         env={**os.environ, "LCM_DEFAULT_URL": bad})
+    run = run_tegrasp(command, tmp_path, timeout_s=120,
+                      env={**os.environ, "LCM_DEFAULT_URL": bad})
     assert run.returncode == 1, run.stderr
     assert_one_line_error(run.returncode, run.stderr, "tegrasp: error:",
                           "environment variable LCM_DEFAULT_URL", bad)
@@ -250,8 +245,7 @@ def _hardware_config(tmp_path, url):
 def _tegrasp(argv, cwd, environment=None):
     """(exit code, stderr) of `tegrasp ARGV` in its own process; an emulator that accepted
     the URL would run until stopped, so a run past the timeout fails the test."""
-    done = subprocess.run([sys.executable, "-m", "tegrasp_drake", *argv], cwd=cwd,
-                          env=environment, capture_output=True, text=True, timeout=60)
+    done = run_tegrasp(argv, cwd, env=environment, timeout_s=60)
     return done.returncode, done.stderr
 
 
