@@ -1,13 +1,15 @@
 """Fixtures shared by test modules."""
 
+import fcntl
 import functools
+import os
 import signal
 
 import pytest
 
 from tegrasp_drake.runs.ideal_grasp import run_ideal_grasp
 from tegrasp_drake.scenario.scenario import LoadScenario
-from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS
+from tegrasp_drake.scenario.trial_log_file import ARRAY_FIELDS, load_trial_log
 from tegrasp_drake.hardware.realtime import realtime_scheduling
 
 
@@ -55,16 +57,31 @@ def empty_user_events_folder(tmp_path_factory, monkeypatch):
 
 
 @pytest.fixture(scope="session")
-def ideal_grasp_log():
+def ideal_grasp_log(tmp_path_factory):
     """ideal_grasp_log(object_name) -> the TrialLog of that object's ideal grasp on its
     built-in scenario.
 
-    Each grasp is simulated once per session (about 13 s each) and shared by every test
-    that asks for it; its arrays are read-only, so that no test can change another's data.
+    Each grasp is simulated once per test run (a minute or more each) and shared by every
+    test that asks for it: the first pytest-xdist worker to ask simulates it and saves it in
+    the run's shared folder, under a lock the others wait on. Every test gets the log as
+    read back from that file, whichever worker simulated it; its arrays are read-only, so
+    that no test can change another's data.
     """
+    shared = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):  # basetemp/popen-gwN: the parent is the run's
+        shared = shared.parent
+    shared = shared / "ideal-grasps"
+    shared.mkdir(exist_ok=True)
+
     @functools.cache
     def run(object_name: str):
-        log, _ = run_ideal_grasp(LoadScenario(name=object_name))
+        saved = shared / f"{object_name}.npz"
+        with open(shared / f"{object_name}.lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+            if not saved.exists():
+                log, _ = run_ideal_grasp(LoadScenario(name=object_name))
+                log.save(saved)
+        log = load_trial_log(saved)
         for name in ARRAY_FIELDS:
             getattr(log, name).setflags(write=False)
         return log
