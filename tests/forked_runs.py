@@ -5,13 +5,9 @@ what a process does with signals, its process group or a terminal start a real o
 
 import atexit
 import os
-import pathlib
 import subprocess
 
-from tests.script_server import ScriptServer
-
-REPOSITORY = pathlib.Path(__file__).resolve().parents[1]
-ANALYSIS = REPOSITORY / "analysis"
+from tests.script_server import ANALYSIS, REPOSITORY, ScriptServer
 
 
 def script_environment(env: dict | None = None) -> dict:
