@@ -80,7 +80,8 @@ def test_no_config_class_holds_more_than_15_fields():
     assert not crowded, crowded
 
 
-@pytest.mark.parametrize("name", sorted(read_yaml_file(paths.scenarios_file(), "scenarios")))
+@pytest.mark.parametrize("name", sorted(read_yaml_file(paths.scenarios_file(), "scenarios",
+                                                    kind=None)))
 def test_every_built_in_scenario_lies_in_its_ranges(name):
     check_ranges(LoadScenario(name=name), name)
 

@@ -36,3 +36,25 @@ def test_a_scenario_file_says_its_keys_are_scenario_names(tmp_path):
     path.write_text("- default\n")
     with pytest.raises(ConfigError, match="must be a mapping of scenario names"):
         LoadScenario(path)
+
+
+# The tag each loader's file may carry at its top level (None: none, the scenario file being
+# a mapping of names, no one class's).
+OWN_TAGS = {"the scenario file": None, "the sweep spec": "!SweepSpec",
+            "the transfer spec": "!TransferSpec", "the sensitivity spec": "!SensitivitySpec",
+            "the hardware config": "!HardwareStationConfig",
+            "the tactile calibration": "!TactileCalibration"}
+
+
+@pytest.mark.parametrize("what, foreign", [
+    (what, foreign) for what in sorted(LOADERS)
+    for foreign in ("!Scenario", "!HardwareStationConfig", "!SweepSpec", "!SensitivitySpec")
+    if foreign != OWN_TAGS[what]])
+def test_a_file_tagged_as_another_kind_is_refused_not_read_as_untagged(what, foreign, tmp_path):
+    path = tmp_path / "file.yaml"
+    path.write_text(f"{foreign}\nzero_samples: 100\nobjects: [box]\n")
+    with pytest.raises(ConfigError) as refused:
+        LOADERS[what](path)
+    message = str(refused.value)
+    assert message.startswith(f"{path}: the file is tagged {foreign}, but it is read as "), message
+    assert ("remove the tag" in message and "\n" not in message), message

@@ -31,8 +31,8 @@ def scenario_from_arguments(args, *, simulates: str = ""):
     ignores), or exits with the error. `simulates`: "trial" refuses a hardware scenario;
     "events" notes that its simulation is used."""
     if args.scenario and not pathlib.Path(args.scenario).exists() and \
-            args.scenario in (read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
-                              or {}):
+            args.scenario in (read_yaml_file_cached(paths.scenarios_file(), "the scenario file",
+                                                    kind=None) or {}):
         raise SystemExit(f"{ERROR_LEAD}--scenario takes a file of scenarios; "
                          f"'{args.scenario}' is a built-in scenario: give --scenario-name "
                          f"{args.scenario}")

@@ -32,10 +32,10 @@ from tegrasp_drake.robotiq import registers
 from tegrasp_drake.hardware.robotiq.modbus_client import (ACTIVATION_MIN_S, MIN_PERIOD,
                                                           RobotiqModbusConfig)
 from tegrasp_drake.hardware.watchdog import DEFAULT_TIMEOUTS
-from tegrasp_drake.rig.typed_yaml import (ConfigError, apply_override, check_instance,
-                                          require_own_tag, load_typed, loaded_with_overrides,
-                                          parse_yaml, read_yaml_text, refuse_a_key_set_twice,
-                                          require_fields, require_mapping, top_level_tag)
+from tegrasp_drake.rig.typed_yaml import (ConfigError, ForeignTagError, apply_override,
+                                          check_instance, load_typed, loaded_with_overrides,
+                                          read_yaml_file, refuse_a_key_set_twice,
+                                          require_fields, require_mapping)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.rig.echo import shorten, shown
 
@@ -687,21 +687,21 @@ def LoadHardwareConfig(filename: PathLike, overrides: typing.Sequence[str] = ()
     --config-set and a YAML mapping may not: neither would silently win."""
     refuse_a_key_set_twice(overrides, f"LoadHardwareConfig({shown(str(filename))})",
                            "overrides", kind="argument")
-    text = read_yaml_text(filename, "the hardware config")
-    data = parse_yaml(text, str(filename)) if text else None
-    if text and top_level_tag(text) == _SIMULATED_STATION_TAG:
+    try:
+        data = read_yaml_file(filename, "the hardware config", kind=HardwareStationConfig)
+    except ForeignTagError as e:
+        if e.tag != _SIMULATED_STATION_TAG:
+            raise
         raise ConfigError(f"{filename}: the file is a {_SIMULATED_STATION_TAG}, a simulated "
                           "station, not a hardware config: `tegrasp hardware` needs a "
                           "!HardwareStationConfig (or untagged hardware fields: arm, gripper, "
-                          "tactile, ...); a simulated station runs with `tegrasp trial`")
+                          "tactile, ...); a simulated station runs with `tegrasp trial`") from None
     # Not a request for the default devices (/dev/ttyUSB0, /dev/ttyACM0): name them.
     require_fields(data, filename, "the hardware config", "give the devices' fields (arm, "
                    "gripper, tactile, ...; `tegrasp emulate all --write-config FILE` writes "
                    "one)")
     require_mapping(data, filename, "the hardware config", "HardwareStationConfig fields "
                     "(arm, gripper, tactile, watchdog, ...)")
-    require_own_tag(text, HardwareStationConfig, filename)
-    data.pop("_tag", None)
     for assignment in overrides:
         apply_override(data, assignment, "--config-set", "tactile.port")
     return loaded_with_overrides(

@@ -51,17 +51,46 @@ class YamlSyntaxError(ConfigError):
     caller that also takes free text."""
 
 
+class ForeignTagError(ConfigError):
+    """A configuration file whose top-level tag is not its kind's (parse_yaml_file); `tag`
+    is that tag, for a loader that names a likely mix-up in its own words."""
+
+    def __init__(self, message: str, *, tag: str):
+        super().__init__(message)
+        self.tag = tag
+
+
 class UnreadableFileError(ConfigError):
     """A configuration file that cannot be read (missing, a folder or device, no permission,
     an I/O error): bad input, exit 1 wherever it is given (docs/user-guide.md, "Exit codes"),
     not a file refused for what it holds (a sweep, transfer or sensitivity spec: exit 2)."""
 
 
-def read_yaml_file(path: str | pathlib.Path, what: str):
+def read_yaml_file(path: str | pathlib.Path, what: str, *, kind: type | None):
     """The parsed content of the YAML file at `path` (None if it is empty); `what` names the
-    file in errors, e.g. "the scenario file"."""
+    file in errors, e.g. "the scenario file"; `kind`: the class whose tag the file's top level
+    may carry (parse_yaml_file)."""
     text = read_yaml_text(path, what)
-    return parse_yaml(text, str(path)) if text else None
+    return parse_yaml_file(text, path, what, kind=kind)
+
+
+def parse_yaml_file(text: str, path: str | pathlib.Path, what: str, *, kind: type | None):
+    """parse_yaml's data of a configuration file's `text` (None if it is empty), the one way
+    every file kind is parsed: ForeignTagError when its top-level mapping carries a tag other
+    than `kind`'s own (`!SweepSpec` for kind=SweepSpec; no tag at all for kind=None, a file
+    that is no one class's, e.g. the scenario file's mapping of names), which parse_yaml
+    would drop: a file of another kind, or a misspelt tag, is not read without a word."""
+    if not text:
+        return None
+    data = parse_yaml(text, str(path))
+    tag = top_level_tag(text)
+    if tag is not None and (kind is None or tag != f"!{kind.__name__}"):
+        remedy = (f"tag it !{kind.__name__} or remove the tag" if kind is not None else
+                  "remove the tag (its top level takes none)")
+        read_as = f"a {kind.__name__}" if kind is not None else what
+        raise ForeignTagError(f"{path}: the file is tagged {shorten(tag)}, but it is read as "
+                              f"{read_as}; {remedy}", tag=tag)
+    return data
 
 
 def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
@@ -89,12 +118,12 @@ def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
     return text
 
 
-# read_yaml_file_cached's parsed files: (path, device, inode, size, mtime in ns) -> data.
+# read_yaml_file_cached's parsed files: (path, device, inode, size, mtime in ns, kind) -> data.
 _PARSED_FILES: dict = {}
 _MAX_PARSED_FILES = 16  # a few scenario files; the oldest is dropped past it
 
 
-def read_yaml_file_cached(path: str | pathlib.Path, what: str):
+def read_yaml_file_cached(path: str | pathlib.Path, what: str, *, kind: type | None):
     """read_yaml_file's data, parsed once per process for each version of a regular file
     (its path, device, inode, size and modification time: an edited or replaced file is read
     again); a deep copy each call, so a caller may change it (LoadScenario applies --set
@@ -105,11 +134,11 @@ def read_yaml_file_cached(path: str | pathlib.Path, what: str):
     except OSError:
         status = None
     if status is None or not stat.S_ISREG(status.st_mode):
-        return read_yaml_file(path, what)  # its error names the problem, nothing is kept
+        return read_yaml_file(path, what, kind=kind)  # its error names the problem
     key = (os.path.abspath(path), status.st_dev, status.st_ino, status.st_size,
-           status.st_mtime_ns)
+           status.st_mtime_ns, kind)
     if key not in _PARSED_FILES:
-        data = read_yaml_file(path, what)
+        data = read_yaml_file(path, what, kind=kind)
         if len(_PARSED_FILES) >= _MAX_PARSED_FILES:
             del _PARSED_FILES[next(iter(_PARSED_FILES))]
         _PARSED_FILES[key] = data
@@ -134,7 +163,7 @@ def require_fields(data, path, what: str, advice: str) -> None:
 
 def require_mapping(data, path, what: str, contents: str, *, echo: bool = True) -> None:
     """ConfigError unless a configuration file's top level is a mapping: a file whose top
-    level is a list or a scalar says so, in the words of `what` ("the scenario file") and
+    level is a list or a scalar says so, in the words of `what` ("the scenario file", kind=None) and
     `contents` (what its keys are: "scenario names"), not as a missing key. echo=False: a
     file a field names, which may be any file the user can read: the error says the kind and
     size of what it found, never its content (content_words)."""
@@ -862,16 +891,6 @@ def require(condition: bool, source: str, path: str, words: str, value) -> None:
     """Raises ConfigError "SOURCE: field 'PATH' WORDS, got VALUE" unless `condition`."""
     if not condition:
         raise ConfigError(f"{source}: field '{path}' {words}, got {shown(value)}")
-
-
-def require_own_tag(text: str, cls: type, source) -> None:
-    """ConfigError naming `source` when the YAML `text`'s top-level mapping carries a tag other
-    than `cls`'s own (`!HardwareStationConfig`): parse_yaml drops that tag, so a file of
-    another kind, or a misspelt tag, would otherwise be read without a word."""
-    tag = top_level_tag(text)
-    if tag is not None and tag != f"!{cls.__name__}":
-        raise ConfigError(f"{source}: the file is tagged {shorten(tag)}, but it is read as a "
-                          f"{cls.__name__}; tag it !{cls.__name__} or remove the tag")
 
 
 def _refuse_tag(value, path: str, source: str) -> None:

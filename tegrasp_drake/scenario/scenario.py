@@ -534,7 +534,7 @@ def LoadScenario(filename: PathLike | None = None, name: str = DEFAULT_SCENARIO,
     two values (refuse_a_key_set_twice), as --set may not."""
     refuse_a_key_set_twice(overrides, "LoadScenario", "overrides", kind="argument")
     path = pathlib.Path(filename) if filename else paths.scenarios_file()
-    document = read_yaml_file_cached(path, "the scenario file")
+    document = read_yaml_file_cached(path, "the scenario file", kind=None)
     if document is not None:  # an empty file: no scenario named `name`, below
         require_mapping(document, path, "the scenario file",
                         "scenario names to scenarios (default: {object: {name: box}})")
@@ -564,7 +564,7 @@ def refuse_listed_override(overrides: typing.Sequence[str], place, *,
     before it, its assignment, why and what to do. Returns when none is refused so (the base
     is at fault)."""
     for k, assignment in enumerate(overrides):
-        document = read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
+        document = read_yaml_file_cached(paths.scenarios_file(), "the scenario file", kind=None)
         data = document[DEFAULT_SCENARIO]
         taken = (*base, *overrides[:k + 1])
         try:

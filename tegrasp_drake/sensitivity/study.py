@@ -69,7 +69,7 @@ def LoadSensitivitySpec(path) -> SensitivitySpec:
 
     ConfigError names the file and the field of anything that cannot run."""
     source = str(path)
-    data = read_yaml_file(path, "the sensitivity spec")
+    data = read_yaml_file(path, "the sensitivity spec", kind=SensitivitySpec)
     # the example names a real parameter (the table's first), so that it cannot drift
     require_fields(data, source, "the sensitivity spec", "give at least one field (e.g. "
                    f"parameters: [{UNCERTAIN_PARAMETERS[0].key}]; `sweep: {{}}` for every "

@@ -28,7 +28,7 @@ def LoadSweepSpec(path: PathLike, *, builtin_objects: Collection[str] = BUILTIN_
     """Reads and validates a YAML sweep spec (analysis/example_sweep.yaml shows each field);
     fields left out keep the paper's defaults. `grid` is a list of [dx_m, dy_m] or the product
     of normal_offsets_m and stroke_offsets_m. ConfigError names the file and the field."""
-    fields = read_yaml_file(path, "the sweep spec")
+    fields = read_yaml_file(path, "the sweep spec", kind=SweepSpec)
     # Not a request for the paper's 243-trial experiment (which running without --spec gives).
     require_fields(fields, path, "the sweep spec", "give at least one field (e.g. objects: "
                    "[box]), or leave out --spec for the paper's experiment")

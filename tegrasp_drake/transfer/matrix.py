@@ -74,7 +74,7 @@ def cell_name(memorizing: str, running: str) -> str:
 
 def world_assignments(world: TransferWorld, source: str = "transfer spec") -> tuple[str, ...]:
     """The world as `--set` assignments: its preset's dotted fields but `object`, then overrides."""
-    document = read_yaml_file_cached(paths.scenarios_file(), "the scenario file")
+    document = read_yaml_file_cached(paths.scenarios_file(), "the scenario file", kind=None)
     if world.scenario not in document:
         raise ConfigError(f"{source}: scenario '{world.scenario}' is not in "
                           f"{paths.scenarios_file()} (scenarios: {', '.join(document)})")
@@ -112,7 +112,7 @@ def LoadTransferSpec(path, *, confirmed_trials: int | None = None) -> TransferSp
     cost of a matrix over the trial bound (check_matrix_size; `confirmed_trials`, the count
     given with --confirm-trials, runs it)."""
     source = str(path)
-    data = read_yaml_file(path, "the transfer spec")
+    data = read_yaml_file(path, "the transfer spec", kind=TransferSpec)
     require_fields(data, source, "the transfer spec", "give its worlds and cells (e.g. "
                    "worlds: {a: {scenario: memorizing_world}}, cells: [[a, a]])")
     require_mapping(data, source, "the transfer spec",

@@ -108,16 +108,16 @@ def test_a_hardware_run_longer_than_the_command_lines_cap_is_refused():
         run_on_hardware(LoadScenario(name="box"), duration=1e9)
 
 
-# Rule: a configuration file without a field (empty, comments only, `{}`, a lone tag) is a
-# mistake, not a request for every default: the hardware config as scenario files and specs.
-@pytest.mark.parametrize("text", ["", "# my robot\n", "{}\n", "!Scenario {}\n",
-                                  "!HardwareStationConfig {}\n"])
+# Rule: a configuration file without a field (empty, comments only, `{}`, its own tag alone)
+# is a mistake, not a request for every default: the hardware config as scenario files and
+# specs. (Another kind's tag alone is refused as that: tests/test_yaml_top_level.py.)
+@pytest.mark.parametrize("text", ["", "# my robot\n", "{{}}\n", "!{kind} {{}}\n"])
 def test_a_hardware_config_without_fields_is_refused(tmp_path, text):
     path = tmp_path / "hardware.yaml"
-    path.write_text(text)
+    path.write_text(text.format(kind="HardwareStationConfig"))
     refusal(lambda: T.LoadHardwareConfig(path), str(path), "is empty")
     spec = tmp_path / "spec.yaml"
-    spec.write_text(text)
+    spec.write_text(text.format(kind="SweepSpec"))
     refusal(lambda: T.LoadSweepSpec(spec), str(spec), "is empty")
 
 

@@ -77,15 +77,18 @@ class TactileCalibration:
 
 def LoadTactileCalibration(filename: str) -> TactileCalibration:
     """Reads a TactileCalibration from YAML; otherwise a ConfigError naming the file and field."""
-    from tegrasp_drake.rig.typed_yaml import (ConfigError, require_own_tag, load_typed,
-                                              parse_yaml, read_yaml_text, require_known_keys,
-                                              require_mapping)
+    from tegrasp_drake.rig.typed_yaml import (ConfigError, ForeignTagError, load_typed,
+                                              parse_yaml_file, read_yaml_text,
+                                              require_known_keys, require_mapping)
     # A field names the file, which may be any file the user can read: what is wrong with
     # one that is no calibration is said without showing its content.
     advice = "give a calibration SaveTactileCalibration wrote, or no file for the defaults"
     text = read_yaml_text(filename, "the tactile calibration")
     try:
-        data = parse_yaml(text, str(filename)) if text else None
+        data = parse_yaml_file(text, filename, "the tactile calibration",
+                               kind=TactileCalibration)
+    except ForeignTagError:
+        raise
     except ConfigError as e:  # its words may quote the text (a key, a token); where may not
         where = f" {e.where}:" if e.where else ""
         raise ConfigError(f"{filename}:{where} is not a tactile calibration (its {len(text)} "
@@ -96,9 +99,7 @@ def LoadTactileCalibration(filename: str) -> TactileCalibration:
                           "the defaults")
     require_mapping(data, filename, "the tactile calibration",
                     "fields (left, right, zero_samples, piezo_volts_per_count)", echo=False)
-    require_own_tag(text, TactileCalibration, filename)
     require_known_keys(data, TactileCalibration, filename, "a tactile calibration", advice)
-    data.pop("_tag", None)
     calibration = load_typed(data, TactileCalibration, str(filename))
     check_ranges(calibration, str(filename))
     return calibration
