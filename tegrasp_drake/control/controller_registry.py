@@ -242,6 +242,19 @@ def foreign_setting(section: dict) -> tuple[str, tuple[str, ...]] | None:
     return None
 
 
+def selected_controller(section) -> str | None:
+    """The name of the controller a scenario's YAML `controller` section selects, by its
+    `name` or else by its tag (`!HeuristicControllerConfig`: 'heuristic'); None when it
+    selects none (no section, neither a name nor a known tag)."""
+    if not isinstance(section, dict):
+        return None
+    if section.get("name") is not None:
+        return section["name"]
+    entry = next((entry for entry in CONTROLLERS
+                  if section.get("_tag") == f"!{entry.config.__name__}"), None)
+    return entry.name if entry is not None else None
+
+
 class ControllerTagError(ValueError):
     """A controller section whose YAML tag and `name` select different controllers."""
 

@@ -21,7 +21,7 @@ from pydrake.systems.analysis import GetIntegrationSchemes, SimulatorConfig
 from tegrasp_drake.control.controller_registry import (
     CONTROLLER_CLASSES, CONTROLLER_NAMES, ControllerConfig, UnknownControllerError,
     controller_entry, controller_named, controller_tag_problem, foreign_setting,
-    select_controller_tag)
+    select_controller_tag, selected_controller)
 from tegrasp_drake.control.scripted_grasp import GraspScriptConfig
 from tegrasp_drake.hardware.config import HardwareStationConfig, validate_hardware_config
 from tegrasp_drake.rig import paths
@@ -578,11 +578,11 @@ def refuse_listed_override(overrides: typing.Sequence[str], place, *,
 
 
 def _refuse_other_controller_name(data: dict, overrides, controller: str | None) -> None:
-    """ConfigError when `controller` is given and the overrides set controller.name to
-    another controller: neither may silently win."""
+    """ConfigError when `controller` is given and the overrides select another controller,
+    by controller.name or by a section's tag (`controller=!HeuristicControllerConfig {}`):
+    neither may silently win."""
     named = [a for a in overrides if keys_overlap(assignment_key(a), "controller.name")]
-    section = data.get("controller")
-    name = section.get("name") if isinstance(section, dict) else None
+    name = selected_controller(data.get("controller"))
     if controller is not None and named and name is not None and name != controller:
         raise ConfigError(f"--controller {controller} and --set {named[-1]} select different "
                           "controllers; give one of them")

@@ -153,14 +153,18 @@ def test_a_probe_stops_with_one_line_and_loses_nothing(make, argv, expected, tmp
     assert not (tmp_path / "hacked").exists()
 
 
+# A --set selects a controller by its name or by a section's tag: either, against another
+# --controller, is refused the same way.
+@pytest.mark.parametrize("assignment", ["controller.name=heuristic",
+                                        "controller=!HeuristicControllerConfig {}"])
 @pytest.mark.parametrize("command", [["trial"], ["hardware", "--config", "hw.yaml",
                                                  "--log", "run.lcmlog"]])
 def test_controller_and_another_set_controller_name_are_refused_naming_both(
-        command, tmp_path, monkeypatch, capfd):
+        command, assignment, tmp_path, monkeypatch, capfd):
     make = _write("hw.yaml", hardware_config_to_yaml(HardwareStationConfig()))
-    argv = command + ["--controller", "open_loop", "--set", "controller.name=heuristic"]
-    _, text = assert_probe_refused(make, argv, ["--controller open_loop and --set "
-                                                "controller.name=heuristic select different "
+    argv = command + ["--controller", "open_loop", "--set", assignment]
+    _, text = assert_probe_refused(make, argv, [f"--controller open_loop and --set "
+                                                f"{assignment} select different "
                                                 "controllers; give one of them"],
                                    tmp_path, monkeypatch, capfd)
     code, _ = run_cli(argv, capfd)
