@@ -104,9 +104,13 @@ def main(argv=None) -> int:
             if unwritable and exit_.code in (0, None):
                 return _cannot_write(*unwritable)
             raise
-        # what is still buffered goes out now, while a closed pipe or a full disk can be told
+        # what is still buffered goes out now, while a closed pipe or a full disk can be told;
+        # a command's own failure keeps its exit code (a refusal said on a closed stderr: 2)
         unwritable = output_streams.unwritable_output()
-        return _cannot_write(*unwritable) if unwritable else code
+        if unwritable:
+            told = _cannot_write(*unwritable)
+            return code or told
+        return code
     except BrokenPipeError:  # Python's flush at exit then finds no closed pipe to report
         output_streams.detach_standard_streams()
         return EXIT_CLOSED_PIPE

@@ -31,10 +31,12 @@ class OutputStreamError(OSError):
 class _GuardedStream:
     """A text stream whose failed writes raise OutputStreamError naming it (a closed pipe
     stays a BrokenPipeError), and which writes what its encoding cannot hold escaped (\\xe9);
-    everything else is the stream's."""
+    everything else is the stream's. `quiet`: a failed write is only remembered, not raised
+    (a standard error the shell closed: nothing can be told there, and a refusal being said
+    on it keeps its own exit code)."""
 
-    def __init__(self, stream, name: str):
-        self._stream, self._name = stream, name
+    def __init__(self, stream, name: str, *, quiet: bool = False):
+        self._stream, self._name, self._quiet = stream, name, quiet
 
     def write(self, text):
         try:
@@ -45,7 +47,10 @@ class _GuardedStream:
         except BrokenPipeError:
             raise
         except OSError as error:
-            raise self._failed(error) from None
+            failure = self._failed(error)
+            if self._quiet:
+                return len(text)
+            raise failure from None
 
     def flush(self):
         try:
@@ -66,8 +71,9 @@ class _GuardedStream:
 
 
 class _ClosedStream:
-    """The standard output of a process started with it closed (`tegrasp ... >&-`): Python
-    gives None, and print() would drop the text and report nothing; every write fails."""
+    """The standard output or error of a process started with it closed (`tegrasp ... >&-`,
+    `2>&-`): Python gives None, and print() would drop the text and report nothing (or, for
+    stderr, print it on stdout); every write fails."""
 
     def write(self, text):
         raise OSError(errno.EBADF, "it is closed; send it to a file, or to /dev/null to "
@@ -88,12 +94,14 @@ def note_failed_write(failure: OutputStreamError) -> None:
 
 @contextlib.contextmanager
 def guarded_output():
-    """stdout and stderr as _GuardedStreams for the block, a closed stdout one whose writes
-    fail (_ClosedStream); no failed write remembered yet."""
+    """stdout and stderr as _GuardedStreams for the block, a closed one as a stream whose
+    writes fail (_ClosedStream; on stderr they are only remembered, as nothing can be told
+    there); no failed write remembered yet."""
     _failed_writes.clear()
     original = sys.stdout, sys.stderr
     guarded = (_GuardedStream(original[0] or _ClosedStream(), STANDARD_OUTPUT),
-               None if original[1] is None else _GuardedStream(original[1], STANDARD_ERROR))
+               _GuardedStream(original[1] or _ClosedStream(), STANDARD_ERROR,
+                              quiet=original[1] is None))
     sys.stdout, sys.stderr = guarded
     try:
         yield
@@ -131,6 +139,8 @@ def tell_cannot_write(name: str, error: OSError, program: str = "tegrasp") -> No
     _failed_writes.clear()  # told now, once
     if name == STANDARD_OUTPUT:
         detach(sys.stdout)
+    if sys.stderr is None:  # closed by the shell (`2>&-`): print() would write on stdout
+        return
     try:
         print(f"{program}: error: cannot write to {name}: {error.strerror or error}",
               file=sys.stderr, flush=True)

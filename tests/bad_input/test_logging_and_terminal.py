@@ -116,6 +116,37 @@ def test_a_dry_run_sweep_with_its_stdout_closed_is_refused_in_one_line(tmp_path)
                                                            [CLOSED_STDOUT_LINE])
 
 
+# Rule: a standard error the shell closed (`2>&-`; Python's sys.stderr is None) is a stream
+# whose writes fail: what is said there is lost, never printed on stdout, and a refusal keeps
+# its documented exit code (2 for a command line that does not parse or a spec refused).
+def _refusing(code):
+    def command(args):
+        print("tegrasp: error: refused", file=sys.stderr)
+        return code
+    return command
+
+
+@pytest.mark.parametrize("code", [cli.EXIT_ERROR, 2])
+def test_a_refusal_said_on_a_closed_stderr_keeps_its_code_and_prints_nothing(monkeypatch,
+                                                                             code):
+    monkeypatch.setattr(cli, "build_parser", lambda: parser_of_one_command(_refusing(code)))
+    printed = io.StringIO()
+    monkeypatch.setattr(cli.sys, "stdout", printed)
+    monkeypatch.setattr(cli.sys, "stderr", None)
+    assert cli.main(["say"]) == code
+    assert printed.getvalue() == ""
+
+
+def test_a_command_line_that_does_not_parse_with_stderr_closed_exits_2(tmp_path):
+    spec = tmp_path / "spec.yaml"
+    spec.write_text("objects: [nope]\n")
+    for argv in (["trial", "--bogus"], ["sweep", "--spec", str(spec), "--dry-run"]):
+        done = subprocess.run(["sh", "-c", '"$@" 2>&-', "sh", sys.executable, "-m",
+                               "tegrasp_drake", *argv], stdout=subprocess.PIPE, text=True,
+                              env=killed_runs.environment(), timeout=300)
+        assert (done.returncode, done.stdout) == (2, ""), argv
+
+
 def test_an_unwritable_matplotlib_folder_adds_no_lines(tmp_path):
     env = {"HOME": "/proc", "TEGRASP_EVENTS_DIR": "", "XDG_DATA_HOME": "",
            "XDG_CONFIG_HOME": "", "XDG_CACHE_HOME": "", "MPLCONFIGDIR": ""}
