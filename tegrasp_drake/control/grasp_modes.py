@@ -4,7 +4,7 @@ the record of each change (the state machine's timeline)."""
 import dataclasses
 import enum
 
-from tegrasp_drake.rig.api_boundary import public_dataclass
+from tegrasp_drake.rig.api_boundary import check_field_types, public_dataclass
 from tegrasp_drake.rig.ranges import bounded, check_ranges
 from tegrasp_drake.rig.echo import given, shorten, shown
 from tegrasp_drake.rig.files import one_line
@@ -166,7 +166,9 @@ class Transition:
         printable line of at most MAX_REASON_CHARS, a `code` that names no rule
         of a registered controller's table, or a to_mode that is the from_mode: an entry
         records a change of mode (no rule's `then` keeps its mode, and the open-loop script
-        logs a phase only when its mode changes)."""
+        logs a phase only when its mode changes). The types first (a reason of None, 5 or
+        b"x" named, not a TypeError of its check): the checks read the fields' values."""
+        check_field_types(self)
         check_ranges(self, type(self).__name__)
         problem = words_problem(self.reason)
         if problem:

@@ -77,7 +77,7 @@ def test_a_code_that_names_no_rule_is_refused_in_one_line_naming_it(code, words)
 @pytest.mark.parametrize("reason, words", [
     ("x" * 1001, "got 1001 characters"),
     ("held\n3 s", "got '\\n' at character 4"),
-    ("held\x1b[2J", "got '\\x1b' at character 4"),
+    ("held\x1b[2J", "holds an escape (character 0x1b) at position 4"),
 ], ids=["too-long", "two-lines", "terminal-escape"])
 def test_a_reason_that_is_not_one_printable_line_is_refused_in_one_line(reason, words):
     """A reason is printed on the timeline's one line per transition (results and logs read
@@ -88,3 +88,16 @@ def test_a_reason_that_is_not_one_printable_line_is_refused_in_one_line(reason, 
     assert "field 'reason'" in message and words in message, message
     assert "\n" not in message and len(message) < 400, message
     assert Transition.from_dict({**REACH_LOAD, "reason": "x" * 1000}).reason == "x" * 1000
+
+
+@pytest.mark.parametrize("reason, words", [
+    (None, "must be str, got None"), (5, "must be str, got int 5"),
+    (b"x", "must be str, got bytes b'x'")])
+def test_a_reason_that_is_not_text_is_refused_naming_the_field(reason, words):
+    """The types are checked before the reason's words are read: one line naming the field
+    and what it takes, not a bare TypeError or AttributeError of the check."""
+    with pytest.raises(ValueError) as refused:
+        Transition(t=0.0, from_mode=Mode.REACH, to_mode=Mode.LOAD,
+                   trigger=Trigger.MEMORIZED_EVENT, reason=reason)
+    message = str(refused.value)
+    assert message == f"Transition: field 'reason' {words}", message
