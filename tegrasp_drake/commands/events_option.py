@@ -7,8 +7,10 @@ from tegrasp_drake.rig.files import UserPathError
 
 def check_events_folder(events) -> None:
     """UserPathError (one line, exit 1) unless --events `events` (None: not given) names an
-    existing folder (api_boundary.INPUT_FOLDER): a file, a pipe or a device there is said as
-    such, before a command looks for an index in it. Not given: the folder TEGRASP_EVENTS_DIR
+    existing folder (api_boundary.INPUT_FOLDER) that is an events folder or holds nothing yet
+    (events_folder_problem): a file, a pipe or a device there is said as such, and so is a
+    folder of other files (`--events /etc`), whether or not the command's controllers read
+    events (given, the option is never ignored). Not given: the folder TEGRASP_EVENTS_DIR
     names must exist (rig/paths.py), whether or not the command's controllers read events,
     and hold events or nothing yet (_refuse_a_variable_folder_of_other_files)."""
     if events is None:
@@ -19,6 +21,10 @@ def check_events_folder(events) -> None:
     problem = INPUT_FOLDER.problem(events)
     if problem:
         raise UserPathError(f"--events {events}: {problem} of memorized events")
+    from tegrasp_drake.events.event_file import events_folder_problem
+    problem = events_folder_problem(events, writing=False)
+    if problem:
+        raise UserPathError(f"--events {events}: {problem}")
 
 
 def _refuse_a_variable_folder_of_other_files() -> None:

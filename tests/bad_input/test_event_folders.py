@@ -284,6 +284,31 @@ def test_a_sweep_with_a_missing_events_folder_stops_before_any_trial(tmp_path, m
     assert not (tmp_path / "sw" / "trials").exists()
 
 
+# Rule: an --events folder given is checked whether or not the command's controllers read
+# events: a folder of other files is refused (one line, exit 1), never ignored in silence.
+@pytest.mark.parametrize("controllers", ["open_loop", "heuristic"])
+def test_an_events_folder_of_other_files_is_refused_for_controllers_without_events(
+        tmp_path, capfd, controllers):
+    other = tmp_path / "etc"
+    other.mkdir()
+    (other / "adduser.conf").write_text("# not an event\n")
+    code, text = run_cli(["sweep", "--objects", "box", "--controllers", controllers,
+                          "--attempts", "1", "--dry-run", "--out", str(tmp_path / "sw"),
+                          "--events", str(other)], capfd)
+    assert_one_line_error(code, text, f"--events {other}: is not an events folder")
+    assert code == 1 and "sweep plan" not in text
+    assert not (tmp_path / "sw").exists()
+
+
+def test_trial_checks_a_given_events_folder_for_a_controller_without_events(tmp_path):
+    from tegrasp_drake.commands.scenario_args import controller_events
+    from tegrasp_drake.scenario import LoadScenario
+    (tmp_path / "notes.txt").write_text("mine\n")
+    with pytest.raises(files.UserPathError, match="is not an events folder"):
+        controller_events(LoadScenario(controller="open_loop"), tmp_path)
+    assert controller_events(LoadScenario(controller="open_loop"), None) is None
+
+
 # Rule: a command's refusal names its option, not the function argument it is bound to
 # (`--events`, not run_trial_from_spec's events_dir), before any trial runs.
 @pytest.mark.parametrize("controller", ["open_loop", "memorized"])

@@ -9,6 +9,7 @@ import pytest
 from tegrasp_drake import cli
 from tegrasp_drake.commands import sweep as command
 from tegrasp_drake.sweep.records import load_records
+from tegrasp_drake.rig.paths import package_events_dir
 
 
 def sweep_main(argv) -> int:
@@ -345,7 +346,8 @@ def test_dry_run_checks_the_events_as_the_real_sweep_does(tmp_path, capsys):
     spec.write_text("objects: [cup]\ncontrollers: [memorized]\nuser_objects:\n"
                     "  cup: {shape: cylinder, size: [0.03, 0.1], mass: 0.1, friction: 0.5}\n")
     out = tmp_path / "out"
-    assert sweep_main(["--spec", str(spec), "--dry-run", "--events", str(tmp_path),
+    # the package's events folder: one of events, without the user object's
+    assert sweep_main(["--spec", str(spec), "--dry-run", "--events", str(package_events_dir()),
                          "--out", str(out), "--no-progress"]) == 1
     captured = capsys.readouterr()
     assert "trial memorized/cup/m00/a0" in captured.err and "sweep plan" not in captured.out
