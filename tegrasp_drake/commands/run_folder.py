@@ -41,25 +41,40 @@ RUN_OWNERS = (("sensitivity", ("points.json",)), ("record-events", (INDEX_FILE,)
               ("transfer", ("cells", "events")), ("sweep", ("trials",)), ("trial", RUN_FILES))
 
 
-def run_owner(folder) -> tuple[str, str] | None:
-    """(the command whose run `folder` holds, the entry that says so), or None."""
+def run_owners(folder) -> list[tuple[str, str]]:
+    """Each (command whose run `folder` holds, the entry that says so), in RUN_OWNERS' order,
+    a command once: a folder may hold several runs' entries (a trial's result.json beside a
+    sweep's trials). In an events folder (its index.json) a folder entry is an object's
+    events, not a run's (an object called `trials`); its files are still asked."""
     folder = pathlib.Path(folder)
+    events_folder = os.path.lexists(folder / INDEX_FILE)
+    owners = []
     for command, entries in RUN_OWNERS:
         for entry in entries:
-            if os.path.lexists(folder / entry):
-                return command, entry
-    return None
+            path = folder / entry
+            if os.path.lexists(path) and not (events_folder and command != "record-events"
+                                              and path.is_dir()):
+                owners.append((command, entry))
+                break
+    return owners
+
+
+def run_owner(folder) -> tuple[str, str] | None:
+    """The first of run_owners(folder), or None."""
+    owners = run_owners(folder)
+    return owners[0] if owners else None
 
 
 def other_run_problem(folder, command: str, *, named: str | None = None) -> str | None:
     """Why `tegrasp <command>` may not write its run into `folder`, or None: it holds another
-    command's run, whose files a run of this one would mix with (and a resume of that run
-    would then read); each command's run keeps a folder of its own. `named`: the option or
-    setting that chose the folder, when it is not --out (record-events' --events)."""
-    owner = run_owner(folder)
-    if owner is None or owner[0] == command or (command, owner[0]) == ("sensitivity",
-                                                                      "transfer"):
-        return None  # a sensitivity study is a transfer with its points.json beside it
+    command's run (any of run_owners, not only the first), whose files a run of this one
+    would mix with (and a resume of that run would then read); each command's run keeps a
+    folder of its own. `named`: the option or setting that chose the folder, when it is not
+    --out (record-events' --events, a command's default folder)."""
+    owner = next((owner for owner in run_owners(folder) if owner[0] != command and (
+        command, owner[0]) != ("sensitivity", "transfer")), None)
+    if owner is None:  # a sensitivity study is a transfer with its points.json beside it
+        return None
     if named is not None:
         return (f"{named} holds {held_run(owner)}; give {command} a folder of its own (not "
                 "a run's folder)")
@@ -128,7 +143,9 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
     RunFolderError when `out` holds a run without `overwrite`, or cannot be written."""
     check_run_folder(out if out is not None else default)
     folder = pathlib.Path(out if out is not None else default)
-    problem = out is not None and other_run_problem(folder, "trial")
+    # the default folder a run replaces (demo's out/demo) is checked as an --out given is
+    problem = (out is not None or replace_default) and other_run_problem(
+        folder, "trial", named=None if out is not None else f"the default --out {folder}")
     if problem:
         raise RunFolderError(problem)
     for name in sorted(run_file_names()) if out is not None else ():

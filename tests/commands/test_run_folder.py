@@ -10,9 +10,10 @@ import threading
 import pytest
 
 from tegrasp_drake import cli
-from tegrasp_drake.commands.run_folder import (RESULT_FILE, choose_run_folder,
-                                               commit_run, result_path_beside_log,
-                                               staged_run, write_result)
+from tegrasp_drake.commands.run_folder import (RESULT_FILE, RunFolderError, choose_run_folder,
+                                               commit_run, other_run_problem,
+                                               result_path_beside_log, run_owners, staged_run,
+                                               write_result)
 from tegrasp_drake.runs.hardware_run import HardwareRunResult
 from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config_to_yaml
 from tegrasp_drake.hardware.device_fault import DeviceFault
@@ -315,6 +316,37 @@ def test_a_run_into_an_events_folder_is_refused(command, tmp_path, capsys):
     assert code == 1
     assert len(lines) == 1 and "holds memorized events (index.json)" in lines[0], lines
     assert sorted(path.name for path in events.iterdir()) == ["index.json"]
+
+
+# The default folder a run replaces (demo's out/demo) is checked for another command's run
+# as an --out given is: a sweep's run there is refused, not written into.
+def test_demo_without_out_refuses_a_default_folder_holding_another_commands_run(tmp_path):
+    default = tmp_path / "out" / "demo"
+    (default / "trials").mkdir(parents=True)
+    with pytest.raises(RunFolderError) as refused:
+        choose_run_folder(None, default=str(default), replace_default=True, overwrite=False)
+    assert str(refused.value) == (f"the default --out {default} holds a `tegrasp sweep` run "
+                                  "(trials); give trial a folder of its own (not a run's "
+                                  "folder)")
+    assert sorted(path.name for path in default.iterdir()) == ["trials"]
+
+
+# A folder holding several runs' entries is refused for each foreign one, not only when the
+# first owner asked is foreign: a sweep's trials beside a trial's result.json.
+@pytest.mark.parametrize("command, foreign", [("sweep", "trial"), ("trial", "sweep")])
+def test_a_folder_of_mixed_runs_is_refused_for_any_foreign_owner(command, foreign, tmp_path):
+    folder = tmp_path / "mixed"
+    (folder / "trials").mkdir(parents=True)
+    (folder / RESULT_FILE).write_text("{}")
+    assert run_owners(folder) == [("sweep", "trials"), ("trial", RESULT_FILE)]
+    problem = other_run_problem(folder, command)
+    assert problem is not None and f"holds a `tegrasp {foreign}` run" in problem, problem
+
+
+def test_an_events_folder_holding_an_object_named_like_a_runs_entry_has_one_owner(tmp_path):
+    (tmp_path / "trials").mkdir()  # an object's events, called `trials`
+    (tmp_path / "index.json").write_text("{}")
+    assert run_owners(tmp_path) == [("record-events", "index.json")]
 
 
 def _sweep_logs_into(logs, out, capsys) -> tuple[int, list[str]]:
