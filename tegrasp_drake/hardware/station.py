@@ -32,6 +32,7 @@ from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialRe
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin,
                                            lcm_url_problem)
+from tegrasp_drake.hardware.serial_urls import device_file
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 from tegrasp_drake.rig.api_boundary import public_api
 from tegrasp_drake.rig.echo import shown
@@ -42,11 +43,14 @@ logger = logging.getLogger(__name__)
 def serial_port_in_use(port: str) -> bool:
     """Whether another process holds `port` (a device path) open exclusively, as pyserial's
     `exclusive=True` and this station's readers do (an advisory flock on POSIX); False for a
-    pyserial URL, a path that is no device, or one that cannot be opened (the reader that
-    opens it says why)."""
+    pyserial URL that opens no device file (spy:// is its wrapped device's), a path that is no
+    device, or one that cannot be opened (the reader that opens it says why)."""
     import fcntl
     import os
     import stat
+    port = device_file(port)
+    if port is None:
+        return False
     try:
         if not stat.S_ISCHR(os.stat(port).st_mode):
             return False
@@ -84,10 +88,14 @@ def absent_device_problem(config: HardwareStationConfig) -> str | None:
     import os
     for device, what in SERIAL_DEVICES:
         port = getattr(config, device).port
+        path = device_file(port)  # a URL other than spy:// names no file: pyserial's to open
+        if path is None:
+            continue
         try:
-            os.stat(port)
+            os.stat(path)
         except OSError as error:
-            return (f"field '{device}.port' {shown(port)}: {error.strerror}: plug in the "
+            wraps = f" (the device it wraps, {shown(path)})" if path != port else ""
+            return (f"field '{device}.port' {shown(port)}{wraps}: {error.strerror}: plug in the "
                     f"{what}, or give its port in {device}.port; `tegrasp emulate all "
                     "--write-config FILE` writes a config of emulated devices to try without "
                     "hardware")
