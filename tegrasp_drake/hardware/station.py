@@ -20,7 +20,7 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.fault_latch import FaultLatch
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
-from tegrasp_drake.hardware.lcm_boundary import wait_for_checked_message
+from tegrasp_drake.hardware.lcm_boundary import WaitTally, wait_for_checked_message
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
@@ -35,7 +35,8 @@ from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin
 from tegrasp_drake.hardware.serial_urls import device_file
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 from tegrasp_drake.rig.api_boundary import public_api
-from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.echo import shorten, shown
+from tegrasp_drake.rig.number_text import count_text
 
 logger = logging.getLogger(__name__)
 
@@ -66,6 +67,24 @@ def serial_port_in_use(port: str) -> bool:
     finally:
         os.close(descriptor)  # releases a lock this took
     return False
+
+
+def arm_not_ready_words(tally, url: str, timeout: float) -> str:
+    """Why the arm is not ready after waiting `timeout` [s] on `url`, from what the wait saw
+    (lcm_boundary.WaitTally): no status at all, or statuses that came and were all refused,
+    with how many, why (by reason, the first in words) and what to check."""
+    if not tally.arrived:
+        return (f"arm: no lcmt_jaco_status on {JACO_STATUS_CHANNEL} at {url} within "
+                f"{timeout:g} s (is the Kinova driver, or `tegrasp emulate jaco`, running on "
+                "that URL?)")
+    reasons = ", ".join(f"{reason} {count}" for reason, count in sorted(tally.rejected.items()))
+    return (f"arm: {count_text(tally.arrived, 'message')} on {JACO_STATUS_CHANNEL} at {url} "
+            f"within {timeout:g} s, none a status the JACO2 can send: "
+            f"{tally.rejected_total} read and refused ({reasons}; the first: "
+            f"{shorten(tally.first_rejection, 240)}); check that "
+            "the Kinova driver on that URL publishes lcmt_jaco_status for the 6 joints, in "
+            "radians, within the JACO2's ranges (docs/hardware.md), and that nothing else "
+            f"publishes on {JACO_STATUS_CHANNEL}")
 
 
 class HardwareNotReadyError(RuntimeError):
@@ -291,11 +310,10 @@ class HardwareStation(Diagram):
         active and the pads are zeroed; else HardwareNotReadyError naming what is missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
-        if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline):
-            raise HardwareNotReadyError(
-                f"arm: no lcmt_jaco_status on {JACO_STATUS_CHANNEL} at "
-                f"{self._lcm.get_lcm_url()} within {timeout:g} s (is the Kinova driver, or "
-                "`tegrasp emulate jaco`, running on that URL?)")
+        tally = WaitTally()
+        if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline, tally):
+            raise HardwareNotReadyError(arm_not_ready_words(
+                tally, self._lcm.get_lcm_url(), timeout))
         try:
             self._gripper_client.wait_until_active(max(deadline - time.monotonic(), 0.0),
                                                    configured_s=timeout)
