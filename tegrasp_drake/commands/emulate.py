@@ -58,9 +58,12 @@ def register(subparsers) -> None:
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("device", choices=DEVICES)
     add_scenario_arguments(parser)
-    parser.add_argument("--lcm-url", default=default_lcm_url(), type=lcm_url_option,
-                        help="the arm's LCM bus, which also carries the emulated gripper's "
-                        "state (default: %(default)s)")
+    lcm_url = parser.add_argument(
+        "--lcm-url", default=default_lcm_url(), type=lcm_url_option,
+        help="the arm's LCM bus, which also carries the emulated gripper's state "
+        "(default: %(default)s)")
+    lcm_url.default_origin = lcm_url_origin  # LCM_DEFAULT_URL's, named as such
+
     parser.add_argument("--trial", metavar="NPZ",
                         help="myrio/all: the recorded trial to replay (a TrialLog .npz)")
     parser.add_argument("--sync", choices=SYNC_MODES, default=None,

@@ -303,16 +303,18 @@ def _run_in_log_folder(args, scenario, config, events, corrective, log, result_p
 HARDWARE_RESULT_MAX_BYTES = 16 * 1024 * 1024  # a run's result: its transitions and counters
 
 
-def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
+def earlier_run_file_problem(path, *, is_log: bool,
+                             remedy: str = "give another --log, or remove it yourself"
+                             ) -> str | None:
     """Why --overwrite may not replace `path`, in words that follow it, or None: the earlier
     file must be what a hardware run writes there, an LCM log (empty, or starting with
     LCM_LOG_START, and its result beside it naming it: an LCM log the user recorded otherwise
     is theirs) or a run's result (a JSON object with HARDWARE_RESULT_KEYS); the user's
-    notes saved under a run's name are not replaced. Only the log's head is read."""
+    notes saved under a run's name are not replaced. Only the log's head is read. `remedy`:
+    what to do, ending the words."""
     from tegrasp_drake.rig.files import JsonFileError, read_json_file
     from tegrasp_drake.runs.hardware_log_reader import LCM_LOG_START
     from tegrasp_drake.runs.hardware_run import HARDWARE_RESULT_KEYS
-    remedy = "give another --log, or remove it yourself"
     if is_log:
         try:
             head = existing_file_head(path, len(LCM_LOG_START)) or b""
@@ -338,6 +340,24 @@ def earlier_run_file_problem(path, *, is_log: bool) -> str | None:
                        check=not_a_result)
     except JsonFileError as error:
         return f"exists and {error.problem}; {remedy}"
+    return None
+
+
+def failed_pair_problem(log) -> str | None:
+    """Why a run on `log` that fails could not put its log and result where it keeps them
+    beside the earlier run's (failed_run_path), in words that follow "--log LOG: ", or None:
+    --overwrite replaces there only an earlier failed run's pair (earlier_run_file_problem),
+    never a file of the user's, so such a file is refused before the devices come up."""
+    failed_log = failed_run_path(log)
+    for taken in (failed_log, result_path_beside_log(failed_log)):
+        if not os.path.lexists(taken):
+            continue
+        problem = earlier_run_file_problem(taken, is_log=taken == failed_log,
+                                           remedy="move it away, or give another --log")
+        if problem:
+            what = "log" if taken == failed_log else "result"
+            return (f"{shorten(str(taken))}, where a run that fails puts its {what} (keeping "
+                    f"the earlier run's), {problem}")
     return None
 
 
@@ -371,6 +391,9 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
             raise SystemExit(f"{ERROR_LEAD}{shorten(str(taken))} already holds a run's "
                              f"{'log' if taken == pathlib.Path(log) else 'result'}; give "
                              "another --log, or --overwrite to replace it")
+    problem = earlier and failed_pair_problem(log)
+    if problem:
+        raise SystemExit(f"{ERROR_LEAD}--log {shorten(str(log))}: {problem}")
     problem = free_space_problem(  # before the devices come up
         pathlib.Path(log).parent, LOG_MIN_FREE_BYTES, "its log (ten seconds of the bus)")
     if problem:

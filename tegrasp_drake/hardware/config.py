@@ -59,6 +59,17 @@ def lcm_url_origin(url: str, field: str) -> str:
     return field
 
 
+def lcm_url_text_problem(url, field: str) -> str | None:
+    """Why `url`, the default LCM_DEFAULT_URL set, cannot be text at all (a control
+    character: typed_yaml.text_problem), naming the variable as lcm_url_origin does, or None
+    (also for a URL that `field` gave: the field's own check names it)."""
+    from tegrasp_drake.rig.typed_yaml import text_problem
+    if not isinstance(url, str) or lcm_url_origin(url, field) == field:
+        return None
+    problem = text_problem(url)
+    return f"{lcm_url_origin(url, field)} {problem}, got {shown(url)}" if problem else None
+
+
 @public_dataclass
 @dataclasses.dataclass
 class JacoLcmDriver:
@@ -67,6 +78,14 @@ class JacoLcmDriver:
     lcm_url: str = dataclasses.field(default_factory=default_lcm_url)
     tracker: JacoVelocityTrackerConfig = dataclasses.field(
         default_factory=JacoVelocityTrackerConfig)
+
+    def __post_init__(self):
+        # A control character from LCM_DEFAULT_URL is the variable's to fix: said naming it
+        # (lcm_url_origin), before the field check names a field the user did not write.
+        problem = lcm_url_text_problem(self.lcm_url, "field 'arm.lcm_url'")
+        if problem:
+            from tegrasp_drake.rig.typed_yaml import ConfigTypeError
+            raise ConfigTypeError(problem)
 
     @property
     def channels(self) -> tuple[str, str]:

@@ -4,13 +4,15 @@ refuses, by reason, short bytes, another type's fingerprint and truncated fields
 message leaves the last good one). No Python callback is subscribed on a DrakeLcm a diagram
 pumps: docs/hardware.md, "The real-time loop on a busy host"."""
 
+import dataclasses
 import time
 from collections.abc import Callable
 
 from pydrake.common.value import AbstractValue
 from pydrake.systems.lcm import LcmSubscriberSystem, SerializerInterface
 
-from tegrasp_drake.hardware.message_boundary import MessageBoundary, RejectedMessage
+from tegrasp_drake.hardware.message_boundary import (
+    MessageBoundary, MessageCounters, RejectedMessage)
 
 FINGERPRINT_SIZE = 8  # bytes: every LCM message starts with its type's fingerprint
 
@@ -42,6 +44,7 @@ class CheckedLcmSerializer(SerializerInterface):
         self._lcm_type = lcm_type
         self._boundary = boundary
         self.counting = True
+        self.quiet_tally = None  # while not counting: where a wait counts what it looked at
         self.last_accepted = False  # whether the last message decoded passed the check
 
     def CreateDefaultValue(self):
@@ -49,7 +52,7 @@ class CheckedLcmSerializer(SerializerInterface):
 
     def Deserialize(self, data, abstract_value):
         message = (self._boundary.accept(data) if self.counting
-                   else self._boundary.check_quietly(data))
+                   else self._boundary.check_quietly(data, tally=self.quiet_tally))
         self.last_accepted = message is not None
         if message is not None:
             abstract_value.set_value(message)
@@ -67,21 +70,40 @@ def CheckedLcmSubscriber(*, channel: str, lcm_type, boundary: MessageBoundary,
     return subscriber
 
 
-def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: float) -> bool:
+@dataclasses.dataclass
+class WaitTally(MessageCounters):
+    """What a wait for a checked message saw (wait_for_checked_message): `arrived`, the
+    messages the subscriber received while it waited; of them the ones it read (the newest
+    at each look) counted as accepted or rejected by reason, `first_rejection` in words."""
+    arrived: int = 0
+    first_rejection: str = ""
+
+    def count_rejection(self, rejection: RejectedMessage) -> None:
+        if not self.first_rejection:
+            self.first_rejection = str(rejection)
+        super().count_rejection(rejection)
+
+
+def wait_for_checked_message(lcm, subscriber: LcmSubscriberSystem, deadline: float,
+                             tally: WaitTally | None = None) -> bool:
     """Pumps `lcm` until `subscriber` received a message its boundary accepts (True) or
-    time.monotonic() passes `deadline`. Counts nothing; call it before the Simulator runs."""
+    time.monotonic() passes `deadline`. Counts nothing on the boundary (call it before the
+    Simulator runs); `tally`, when given, counts what the wait saw, so that a wait that
+    ends without a good message can say whether messages came and why they were refused."""
     serializer = subscriber.checked_serializer
     probe = serializer.CreateDefaultValue()
-    received = subscriber.WaitForMessage(0, None, 1e-6)
+    received = start = subscriber.WaitForMessage(0, None, 1e-6)
     while time.monotonic() < deadline:
         lcm.HandleSubscriptions(10)
-        serializer.counting = False
+        serializer.counting, serializer.quiet_tally = False, tally
         try:
             count = subscriber.WaitForMessage(received, probe, 1e-6)
         finally:
-            serializer.counting = True
+            serializer.counting, serializer.quiet_tally = True, None
         if count > received:
             received = count
+            if tally is not None:
+                tally.arrived = count - start
             if serializer.last_accepted:
                 return True
     return False

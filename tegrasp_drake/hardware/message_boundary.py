@@ -29,6 +29,11 @@ class MessageCounters:
     rejected: dict = dataclasses.field(default_factory=dict)  # reason -> count
     last_rejection: str = ""
 
+    def count_rejection(self, rejection: RejectedMessage) -> None:
+        """Counts `rejection` under its reason."""
+        self.rejected[rejection.reason] = self.rejected.get(rejection.reason, 0) + 1
+        self.last_rejection = str(rejection)
+
     @property
     def rejected_total(self) -> int:
         return sum(self.rejected.values())
@@ -62,25 +67,37 @@ class MessageBoundary:
     def accept(self, message, *args):
         """The checked value of `message`, or None (counted) when rejected; listeners see it."""
         try:
-            value = self._check(message, *args)
+            value = self._checked(message, *args)
         except RejectedMessage as rejection:
             self._count(rejection)
-            return None
-        except Exception as e:  # noqa: BLE001: untrusted bytes must never raise out
-            self._count(RejectedMessage(UNDECODABLE, f"{type(e).__name__}: {e}"))
             return None
         self.count_accepted()
         for listener in self._listeners:
             listener(value)
         return value
 
-    def check_quietly(self, message, *args):
-        """The checked value of `message`, or None, counting nothing (a look at a message
-        that will be counted when it is taken: lcm_boundary.wait_for_checked_message)."""
+    def check_quietly(self, message, *args, tally: "MessageCounters | None" = None):
+        """The checked value of `message`, or None, counting nothing here (a look at a message
+        that will be counted when it is taken: lcm_boundary.wait_for_checked_message);
+        `tally`, when given, counts it instead, so that a wait can say what it refused."""
+        try:
+            value = self._checked(message, *args)
+        except RejectedMessage as rejection:
+            if tally is not None:
+                tally.count_rejection(rejection)
+            return None
+        if tally is not None:
+            tally.accepted += 1
+        return value
+
+    def _checked(self, message, *args):
+        """check(message, *args), any exception but a RejectedMessage made one (undecodable)."""
         try:
             return self._check(message, *args)
-        except Exception:  # noqa: BLE001: as accept, a rejection (counted by accept)
-            return None
+        except RejectedMessage:
+            raise
+        except Exception as e:  # noqa: BLE001: untrusted bytes must never raise out
+            raise RejectedMessage(UNDECODABLE, f"{type(e).__name__}: {e}") from None
 
     def count_accepted(self, count: int = 1) -> None:
         """Counts messages accepted outside `accept` (a framer that checks on its own)."""
@@ -93,11 +110,9 @@ class MessageBoundary:
 
     def _count(self, rejection: RejectedMessage) -> None:
         with self._lock:
-            counts = self._counters.rejected
-            if rejection.reason not in counts:
+            if rejection.reason not in self._counters.rejected:
                 self._unreported.append(rejection)
-            counts[rejection.reason] = counts.get(rejection.reason, 0) + 1
-            self._counters.last_rejection = str(rejection)
+            self._counters.count_rejection(rejection)
 
     def counters(self) -> MessageCounters:
         """A snapshot of the counts."""

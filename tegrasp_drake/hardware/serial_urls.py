@@ -74,6 +74,18 @@ def wrapped_device(port: str) -> str:
     return parts.netloc + parts.path or port
 
 
+def device_file(port: str) -> str | None:
+    """The path of the device file `port` opens: a plain path itself, the device spy://
+    wraps; None for the other URLs (loop://, socket://, rfc2217://), which open no file:
+    pyserial opens them, and says what is wrong, when the device starts."""
+    if not is_serial_url(port):
+        return port
+    if port.split("://", 1)[0].lower() != "spy":
+        return None
+    device = wrapped_device(port)
+    return None if device == port or is_serial_url(device) else device
+
+
 def named_paths(port: str) -> dict[str, str]:
     """{path: what it is} of each device or file `port` opens: a device's path ("device");
     spy://'s wrapped device and its `?file=` log ("spy log file"); none for other URLs (they

@@ -20,7 +20,7 @@ from tegrasp_drake.hardware.device_log_messages import (
 from tegrasp_drake.hardware.fault_latch import FaultLatch
 from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL
 from tegrasp_drake.hardware.jaco.jaco_lcm_interface import AddJacoLcmDriver
-from tegrasp_drake.hardware.lcm_boundary import wait_for_checked_message
+from tegrasp_drake.hardware.lcm_boundary import WaitTally, wait_for_checked_message
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 from tegrasp_drake.hardware.robotiq.robotiq_driver import RobotiqDriver
 from tegrasp_drake.hardware.robotiq.modbus_client import RobotiqActivationError, RobotiqModbusClient
@@ -32,9 +32,11 @@ from tegrasp_drake.hardware.myrio.tactile_serial_receiver import TactileSerialRe
 from tegrasp_drake.hardware.watchdog import DeviceWatchdog
 from tegrasp_drake.hardware.config import (HardwareStationConfig, lcm_url_origin,
                                            lcm_url_problem)
+from tegrasp_drake.hardware.serial_urls import device_file
 from tegrasp_drake.lcmtypes import lcmt_tegrasp_gripper, lcmt_tegrasp_tactile
 from tegrasp_drake.rig.api_boundary import public_api
-from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.echo import shorten, shown
+from tegrasp_drake.rig.number_text import count_text
 
 logger = logging.getLogger(__name__)
 
@@ -42,11 +44,14 @@ logger = logging.getLogger(__name__)
 def serial_port_in_use(port: str) -> bool:
     """Whether another process holds `port` (a device path) open exclusively, as pyserial's
     `exclusive=True` and this station's readers do (an advisory flock on POSIX); False for a
-    pyserial URL, a path that is no device, or one that cannot be opened (the reader that
-    opens it says why)."""
+    pyserial URL that opens no device file (spy:// is its wrapped device's), a path that is no
+    device, or one that cannot be opened (the reader that opens it says why)."""
     import fcntl
     import os
     import stat
+    port = device_file(port)
+    if port is None:
+        return False
     try:
         if not stat.S_ISCHR(os.stat(port).st_mode):
             return False
@@ -62,6 +67,24 @@ def serial_port_in_use(port: str) -> bool:
     finally:
         os.close(descriptor)  # releases a lock this took
     return False
+
+
+def arm_not_ready_words(tally, url: str, timeout: float) -> str:
+    """Why the arm is not ready after waiting `timeout` [s] on `url`, from what the wait saw
+    (lcm_boundary.WaitTally): no status at all, or statuses that came and were all refused,
+    with how many, why (by reason, the first in words) and what to check."""
+    if not tally.arrived:
+        return (f"arm: no lcmt_jaco_status on {JACO_STATUS_CHANNEL} at {url} within "
+                f"{timeout:g} s (is the Kinova driver, or `tegrasp emulate jaco`, running on "
+                "that URL?)")
+    reasons = ", ".join(f"{reason} {count}" for reason, count in sorted(tally.rejected.items()))
+    return (f"arm: {count_text(tally.arrived, 'message')} on {JACO_STATUS_CHANNEL} at {url} "
+            f"within {timeout:g} s, none a status the JACO2 can send: "
+            f"{tally.rejected_total} read and refused ({reasons}; the first: "
+            f"{shorten(tally.first_rejection, 240)}); check that "
+            "the Kinova driver on that URL publishes lcmt_jaco_status for the 6 joints, in "
+            "radians, within the JACO2's ranges (docs/hardware.md), and that nothing else "
+            f"publishes on {JACO_STATUS_CHANNEL}")
 
 
 class HardwareNotReadyError(RuntimeError):
@@ -84,10 +107,14 @@ def absent_device_problem(config: HardwareStationConfig) -> str | None:
     import os
     for device, what in SERIAL_DEVICES:
         port = getattr(config, device).port
+        path = device_file(port)  # a URL other than spy:// names no file: pyserial's to open
+        if path is None:
+            continue
         try:
-            os.stat(port)
+            os.stat(path)
         except OSError as error:
-            return (f"field '{device}.port' {shown(port)}: {error.strerror}: plug in the "
+            wraps = f" (the device it wraps, {shown(path)})" if path != port else ""
+            return (f"field '{device}.port' {shown(port)}{wraps}: {error.strerror}: plug in the "
                     f"{what}, or give its port in {device}.port; `tegrasp emulate all "
                     "--write-config FILE` writes a config of emulated devices to try without "
                     "hardware")
@@ -283,11 +310,10 @@ class HardwareStation(Diagram):
         active and the pads are zeroed; else HardwareNotReadyError naming what is missing."""
         timeout = self._config.ready_timeout if timeout is None else timeout
         deadline = time.monotonic() + timeout
-        if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline):
-            raise HardwareNotReadyError(
-                f"arm: no lcmt_jaco_status on {JACO_STATUS_CHANNEL} at "
-                f"{self._lcm.get_lcm_url()} within {timeout:g} s (is the Kinova driver, or "
-                "`tegrasp emulate jaco`, running on that URL?)")
+        tally = WaitTally()
+        if not wait_for_checked_message(self._lcm, self._status_subscriber, deadline, tally):
+            raise HardwareNotReadyError(arm_not_ready_words(
+                tally, self._lcm.get_lcm_url(), timeout))
         try:
             self._gripper_client.wait_until_active(max(deadline - time.monotonic(), 0.0),
                                                    configured_s=timeout)

@@ -92,7 +92,9 @@ def text_argument_problem(parser: argparse.ArgumentParser, namespace) -> str | N
     """The first of `parser`'s arguments in `namespace` whose text (a value, or one of a
     repeated option's) holds a control character (typed_yaml.text_problem: an escape would
     drive the terminal the value is echoed on, a NUL is refused deep in a check), named as
-    the user wrote it, or None."""
+    the user wrote it, or None. An argument whose default may come from elsewhere (an
+    environment variable) says where, by its `default_origin(value, name)` (e.g.
+    hardware.config.lcm_url_origin), as its other checks do."""
     from tegrasp_drake.rig.echo import shorten
     from tegrasp_drake.rig.typed_yaml import text_problem
     for action in parser._actions:
@@ -103,6 +105,8 @@ def text_argument_problem(parser: argparse.ArgumentParser, namespace) -> str | N
             if problem:
                 name = (action.option_strings[0] if action.option_strings
                         else action.metavar or action.dest)
+                origin = getattr(action, "default_origin", None)  # where a default came from
+                name = origin(text, name) if origin is not None else name
                 return f"{name} {problem}, got {shorten(repr(text))}"
     return None
 

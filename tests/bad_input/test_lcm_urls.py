@@ -210,6 +210,25 @@ def test_a_bad_lcm_default_url_variable_is_named(tmp_path, command):
     assert_one_line_error(run.returncode, run.stderr, "tegrasp: error:",
                           "environment variable LCM_DEFAULT_URL", bad)
 
+# The same for a control character in the variable: refused naming the variable, not the
+# option or field it is the default of, and never echoed raw.
+@pytest.mark.parametrize("command, default_of", [
+    (["hardware", "--config", "hw.yaml", "--scenario-name", "box", "--duration", "1"],
+     "field 'arm.lcm_url'"),
+    (["emulate", "jaco"], "--lcm-url"),
+], ids=["hardware", "emulate"])
+def test_a_control_character_in_the_lcm_default_url_variable_is_named(tmp_path, command,
+                                                                     default_of):
+    (tmp_path / "hw.yaml").write_text("gripper: {port: /dev/ttyUSB0}\n")
+    run = run_tegrasp(command, tmp_path, timeout_s=120,
+                      env={**os.environ, "LCM_DEFAULT_URL": "udpm://239.255.76.67:7667\x1b?ttl=0"})
+    assert run.returncode == 1, run.stderr
+    assert_one_line_error(run.returncode, run.stderr, "tegrasp: error: ", "the environment "
+                          f"variable LCM_DEFAULT_URL (the default of {default_of}) holds an "
+                          "escape (character 0x1b)", "'udpm://239.255.76.67:7667\\x1b?ttl=0'")
+    assert "\x1b" not in run.stderr
+
+
 PRECIOUS = "precious data\n"
 
 

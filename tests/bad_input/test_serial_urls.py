@@ -129,3 +129,28 @@ def test_a_spy_url_on_the_other_devices_line_is_one_serial_line(tmp_path):
     config.write_text("tactile: {port: 'spy:///dev/ttyUSB0?raw'}\ngripper: {port: /dev/ttyUSB0}\n")
     with pytest.raises(ConfigError, match="are one serial line"):
         LoadHardwareConfig(config)
+
+
+# Rule: only a plain path (or the device spy:// wraps) is looked for as a device file before
+# the devices start; loop://, socket:// and rfc2217:// open no file, and go to pyserial.
+@pytest.mark.parametrize("port", ["loop://", "socket://192.168.1.30:4001",
+                                  "rfc2217://192.168.1.30:2217?timeout=2.5"])
+def test_a_pyserial_url_is_not_looked_for_as_a_device_file(tmp_path, port):
+    from tegrasp_drake.hardware.config import HardwareStationConfig
+    from tegrasp_drake.hardware.station import absent_device_problem, serial_port_in_use
+    config = HardwareStationConfig()
+    config.gripper.port = port
+    config.tactile.port = str(tmp_path / "ttyACM9")
+    problem = absent_device_problem(config)
+    assert problem is not None and problem.startswith("field 'tactile.port'"), problem
+    assert not serial_port_in_use(port)
+
+
+def test_a_spy_url_wrapping_a_device_not_there_names_that_device(tmp_path):
+    from tegrasp_drake.hardware.config import HardwareStationConfig
+    from tegrasp_drake.hardware.station import absent_device_problem
+    config = HardwareStationConfig()
+    config.gripper.port = f"spy://{tmp_path}/ttyUSB9?raw"
+    problem = absent_device_problem(config)
+    assert problem.startswith(f"field 'gripper.port' '{config.gripper.port}' (the device it "
+                              f"wraps, '{tmp_path}/ttyUSB9'): No such file"), problem

@@ -16,7 +16,8 @@ from pydrake.systems.lcm import LcmInterfaceSystem
 
 from tegrasp_drake.hardware.jaco.jaco_lcm import (
     JACO_STATUS_CHANNEL, check_jaco_status, make_jaco_status)
-from tegrasp_drake.hardware.lcm_boundary import CheckedLcmSubscriber, wait_for_checked_message
+from tegrasp_drake.hardware.lcm_boundary import (
+    CheckedLcmSubscriber, WaitTally, wait_for_checked_message)
 from tegrasp_drake.hardware.message_boundary import MessageBoundary
 
 PACKAGE = pathlib.Path(__file__).resolve().parents[2] / "tegrasp_drake"
@@ -71,6 +72,17 @@ def test_a_bus_of_malformed_statuses_is_not_ready_and_counts_nothing():
         lcm.Publish(JACO_STATUS_CHANNEL, _status(1000)[:30])
     assert not wait_for_checked_message(lcm, subscriber, start + 0.3)
     assert boundary.counters().accepted == 0 and boundary.counters().rejected == {}
+
+
+def test_a_wait_given_a_tally_counts_what_came_and_why_it_was_refused():
+    lcm, boundary, subscriber, _ = _subscribed_diagram()
+    lcm.Publish(JACO_STATUS_CHANNEL, b"\x00" * 3)
+    lcm.Publish(JACO_STATUS_CHANNEL, _status(1000)[:30])
+    tally = WaitTally()
+    assert not wait_for_checked_message(lcm, subscriber, time.monotonic() + 2.0, tally)
+    assert tally.arrived == 2 and tally.accepted == 0 and tally.rejected_total >= 1
+    assert tally.first_rejection.startswith(("too short", "truncated")), tally
+    assert boundary.counters().rejected == {}  # the run's counts start at the run
 
 
 def test_each_message_the_running_diagram_takes_is_counted_and_heard_once():

@@ -75,6 +75,36 @@ def test_activation_timeout_names_the_port():
         assert "gSTA = 1" in client.error
 
 
+def test_a_gripper_that_never_activates_is_said_with_its_status_and_what_to_check():
+    """It answers Modbus, but its status never reaches activation complete: the error says
+    what arrived (the gSTA values, the last status's fields) and what to check, in one line."""
+    config = RobotiqEmulatorConfig(activation_duration=60.0)
+    with RobotiqEmulator(config) as emulator, RobotiqModbusClient(RobotiqModbusConfig(
+            port=emulator.port, activation_timeout=0.2)) as client:
+        with pytest.raises(RobotiqActivationError) as refused:
+            client.wait_until_active(30.0)
+    message = str(refused.value)
+    assert "\n" not in message and "Modbus Error" not in message, message
+    assert "status read(s) answered, gSTA = 1 (activating);" in message, message
+    assert "the last status gACT 1, gGTO 0, gSTA 1, gOBJ 0, gFLT 0x00" in message, message
+    assert "Check the gripper's power" in message and "activation request" in message, message
+    assert "gripper.device_id (9)" in message, message
+
+
+def test_a_gripper_that_does_not_answer_is_said_without_pymodbus_words():
+    """Another unit id than the 2F-85's: no answer, said in the package's words (pymodbus's
+    hold a line break and its own advice), with what to check."""
+    with RobotiqEmulator(RobotiqEmulatorConfig()) as emulator, RobotiqModbusClient(
+            RobotiqModbusConfig(port=emulator.port, device_id=3,
+                                activation_timeout=0.2)) as client:
+        with pytest.raises(RobotiqActivationError) as refused:
+            client.wait_until_active(30.0)
+    message = str(refused.value)
+    assert "\n" not in message and "Modbus Error" not in message, message
+    assert "no answer: nothing came back to a function 16 request" in message, message
+    assert "Check the gripper's power" in message and "gripper.device_id (3" in message
+
+
 def test_no_device_on_the_port_is_an_activation_error():
     with RobotiqModbusClient(RobotiqModbusConfig(port="/dev/does-not-exist")) as client:
         with pytest.raises(RobotiqActivationError, match="/dev/does-not-exist"):

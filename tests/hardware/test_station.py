@@ -53,6 +53,23 @@ def test_no_arm_on_the_bus_is_named_when_waiting_for_the_devices(station):
         station.wait_until_ready(timeout=0.2)
 
 
+def test_an_arm_whose_every_status_is_refused_is_said_with_the_count_and_the_reason(station):
+    """Statuses that come but are all refused are not "no status": the error says how many
+    arrived, were read and refused, why (the first in words) and what to check."""
+    from tegrasp_drake.hardware.jaco.jaco_lcm import JACO_STATUS_CHANNEL, make_jaco_status
+    bad = make_jaco_status(1000, [0.0, 2.8, 0.9, 0.0, 0.0, float("nan")], [0.0] * 6,
+                           [0.0] * 6).encode()
+    for _ in range(5):  # queued on memq://, handled by the wait's first pump
+        station.lcm.Publish(JACO_STATUS_CHANNEL, bad)
+    with pytest.raises(HardwareNotReadyError) as refused:
+        station.wait_until_ready(timeout=2.0)
+    message = str(refused.value)
+    assert "\n" not in message and "no lcmt_jaco_status" not in message, message
+    assert message.startswith("arm: 5 messages on KINOVA_JACO_STATUS at memq://"), message
+    assert "none a status the JACO2 can send" in message and "read and refused (not finite" in message
+    assert "the first: not finite: " in message and "check that the Kinova driver" in message
+
+
 def test_a_missing_tactile_port_is_named():
     with RobotiqEmulator() as gripper:
         config = HardwareStationConfig()

@@ -94,8 +94,8 @@ def test_a_failed_run_replaces_the_earlier_failed_runs_pair_and_names_it(earlier
                                                                          monkeypatch, capfd):
     """Failed runs do not pile up beside --log: the newest failed pair replaces the one
     before, which the stderr line names; the run that did not fail stays."""
-    (earlier_run / "run.failed.lcmlog").write_bytes(b"an earlier failed run's log")
-    (earlier_run / "run.failed.result.json").write_text('{"earlier failed": true}\n')
+    (earlier_run / "run.failed.lcmlog").write_bytes(EARLIER_LOG)
+    (earlier_run / "run.failed.result.json").write_text(EARLIER_FAILED_RESULT)
     monkeypatch.setattr(hardware_run, "run_on_hardware", ended_run(log_fault=FAULT))
     assert cli.main(HARDWARE) == 2
     assert (earlier_run / "run.lcmlog").read_bytes() == EARLIER_LOG
@@ -107,6 +107,30 @@ def test_a_failed_run_replaces_the_earlier_failed_runs_pair_and_names_it(earlier
     assert len(line) == 1
     assert ("they replace the earlier failed run's run.failed.lcmlog and "
             "run.failed.result.json") in line[0]
+
+
+EARLIER_FAILED_RESULT = EARLIER_RESULT.replace('"run.lcmlog"', '"run.failed.lcmlog"')
+
+
+@pytest.mark.parametrize("name, contents, words", [
+    ("run.failed.lcmlog", b"my notes\n", "is not an LCM log"),
+    ("run.failed.lcmlog", EARLIER_LOG, "is an LCM log of no earlier run"),  # lcm-logger's
+    ("run.failed.result.json", b'{"mine": 1}\n', "is not a hardware run's result"),
+])
+def test_a_users_file_where_a_failed_run_would_go_is_refused_before_the_devices(
+        earlier_run, monkeypatch, name, contents, words):
+    """--overwrite replaces there only an earlier failed run's pair: a file of the user's
+    there is refused before the devices come up, naming it, and kept."""
+    (earlier_run / name).write_bytes(contents)
+    monkeypatch.setattr(hardware_run, "run_on_hardware", lambda *a, **k: pytest.fail(
+        "the devices came up"))
+    with pytest.raises(SystemExit) as refused:
+        cli.main(HARDWARE)
+    message = str(refused.value.code)
+    assert "\n" not in message and f"--log run.lcmlog: {name}, where a run that fails" in message
+    assert words in message and "move it away, or give another --log" in message, message
+    assert (earlier_run / name).read_bytes() == contents
+    assert (earlier_run / "run.lcmlog").read_bytes() == EARLIER_LOG
 
 
 def test_failed_runs_of_an_earlier_version_are_left_and_said(earlier_run, monkeypatch,

@@ -12,7 +12,7 @@ import time
 import numpy as np
 from pymodbus import FramerType
 from pymodbus.client import ModbusSerialClient
-from pymodbus.exceptions import ModbusException
+from pymodbus.exceptions import ModbusException, ModbusIOException
 
 from tegrasp_drake.hardware.message_boundary import (
     UNDECODABLE, MessageBoundary, RejectedMessage)
@@ -179,6 +179,14 @@ def quiet_modbus_library() -> None:
     logging.getLogger("pymodbus").setLevel(logging.CRITICAL)
 
 
+def status_words(status) -> str:
+    """Every field of a status vector, e.g. "gACT 1, gGTO 0, gSTA 1, gOBJ 0, gFLT 0x00, gPR 0,
+    gPO 3, gCU 0": what the gripper said, for a message that says what arrived."""
+    return ", ".join(f"{name} 0x{int(value):02X}" if index == units.STATUS_FLT
+                     else f"{name} {int(value)}"
+                     for index, (name, value) in enumerate(zip(units.STATUS_NAMES, status)))
+
+
 def device_fault_words(status) -> str:
     """gFLT of a status vector with its name, e.g. "gFLT = 0x0F (automatic release completed)"."""
     code = int(status[units.STATUS_FLT])
@@ -319,6 +327,11 @@ class RobotiqModbusClient:
         sent = time.monotonic()
         try:
             response = request(address, device_id=self._config.device_id, **kwargs)
+        except ModbusIOException:  # pymodbus's words for it hold a line break and advice of its own
+            self.boundary.reject(NO_ANSWER, f"nothing came back to a function {function} "
+                                 f"request within {number_text(self._config.request_timeout)} "
+                                 "s (gripper.request_timeout)")
+            return None
         except ModbusException as exc:
             self.boundary.reject(NO_ANSWER, str(exc))
             return None
@@ -363,9 +376,12 @@ class RobotiqModbusClient:
                     raise self._activation_error(f"the write of {words} was not accepted "
                                                  f"({self._last_refusal()})")
         last = None  # the last accepted status
+        states = []  # each gSTA the accepted statuses gave, in order of first sight
         while not self._stop.wait(self._config.period):
             sample = self._read(client)
             last = sample.status if sample is not None else last
+            if sample is not None and int(sample.status[units.STATUS_STA]) not in states:
+                states.append(int(sample.status[units.STATUS_STA]))
             # A major fault stops the fingers until the next activation (manual, gFLT): the
             # gripper is at fault, not active, whatever gSTA says.
             if sample is not None and sample.status[units.STATUS_FLT] >= units.FIRST_MAJOR_FAULT:
@@ -381,19 +397,36 @@ class RobotiqModbusClient:
                                                  f"({self._last_refusal()})")
                 refused = "" if sample is not None else (
                     f"; the last status read was refused, {self._last_refusal()}")
+                seen = " then ".join(f"{state} ({units.ActivationStatus(state).name.lower()})"
+                                     for state in states)
                 raise self._activation_error(
-                    f"gSTA = {int(last[units.STATUS_STA])} in the last accepted status, "
-                    f"{device_fault_words(last)}{refused}")
+                    f"its status never reported activation complete (gSTA = "
+                    f"{int(units.ActivationStatus.ACTIVE)}, no fault) in "
+                    f"{self.counters().reads} status read(s) answered, gSTA = {seen}; the "
+                    f"last status {status_words(last)}{refused}", answered=True)
 
     def _last_refusal(self) -> str:
         """The last refused answer in words, under its reason (docs/hardware.md's)."""
         last = self.boundary.counters().last_rejection
         return f"the last refused: {last}" if last else "no answer was refused"
 
-    def _activation_error(self, why) -> RobotiqActivationError:
+    def _activation_error(self, why, *, answered: bool = False) -> RobotiqActivationError:
+        """`why`: what arrived; `answered`: whether the gripper answered status reads, which
+        tells what to check."""
+        config = self._config
+        if answered:
+            check = (f"the gripper's power (24 V), that the activation request reaches it "
+                     f"(rACT = 1 written to register {registers.COMMAND_ADDRESS}: gACT 1 says it did, "
+                     f"gACT 0 that it did not or was reset), that nothing blocks the fingers' "
+                     f"stroke, and that the unit id gripper.device_id ({config.device_id}) is "
+                     f"the 2F-85's, not another device's on the bus")
+        else:
+            check = (f"the gripper's power, its RS-485 adapter on {self.port}, the unit id "
+                     f"gripper.device_id ({config.device_id}: a 2F-85 of another id does not "
+                     f"answer) and gripper.baudrate ({config.baudrate})")
         return RobotiqActivationError(
-            f"Robotiq 2F-85 on {self.port} (slave {self._config.device_id}) did not "
-            f"activate within {number_text(self._config.activation_timeout)} s: {why}")
+            f"Robotiq 2F-85 on {self.port} (slave {config.device_id}) did not "
+            f"activate within {number_text(config.activation_timeout)} s: {why}. Check {check}")
 
     def _loop(self, client):
         period = self._config.period
