@@ -61,24 +61,30 @@ def device_clock_after_frames(clock: DeviceClock, frames, *, allowance: float = 
                               drift: float = DRIFT) -> DeviceClock:
     """The check after these frames (oldest first; each with `sequence`, `time` [s, device]
     and `arrival_time` [s, host]); pure. Once implausible it stays so, unchanged."""
-    if clock.implausible:
+    if clock.implausible or not frames:
         return clock
+    # Plain numbers in the loop (1000 frames a second pass here); one DeviceClock at the end.
+    reference_time, reference_arrival = clock.reference_device_time, clock.reference_arrival_time
+    last_time, last_sequence = clock.last_device_time, clock.last_sequence
+    lead, device_elapsed, host_elapsed = clock.lead, clock.device_elapsed, clock.host_elapsed
+    implausible = False
     for frame in frames:
-        anchored = clock.reference_device_time is not None and follows(
-            clock.last_sequence, clock.last_device_time, frame.sequence, frame.time)
+        device_time, arrival = frame.time, frame.arrival_time
+        anchored = reference_time is not None and follows(last_sequence, last_time,
+                                                          frame.sequence, device_time)
         if anchored:
-            device_elapsed = frame.time - clock.reference_device_time
-            host_elapsed = frame.arrival_time - clock.reference_arrival_time
+            device_elapsed = device_time - reference_time
+            host_elapsed = arrival - reference_arrival
             lead = device_elapsed - host_elapsed
         if not anchored or lead < 0:  # first frame, a restart, or the host read it late
-            clock = DeviceClock(frame.time, frame.arrival_time, frame.time, frame.sequence)
-            continue
-        clock = DeviceClock(clock.reference_device_time, clock.reference_arrival_time,
-                            frame.time, frame.sequence, lead, device_elapsed, host_elapsed,
-                            implausible=lead > allowance + drift * host_elapsed)
-        if clock.implausible:
-            return clock
-    return clock
+            reference_time, reference_arrival = device_time, arrival
+            lead = device_elapsed = host_elapsed = 0.0
+        last_time, last_sequence = device_time, frame.sequence
+        if lead > allowance + drift * host_elapsed:
+            implausible = True
+            break
+    return DeviceClock(reference_time, reference_arrival, last_time, last_sequence, lead,
+                       device_elapsed, host_elapsed, implausible)
 
 
 def implausible_clock_description(clock: DeviceClock, port: str, overflowed: int) -> str:
