@@ -186,7 +186,7 @@ CONSTRUCTORS = {
     BarePythonOutput: lambda: BarePythonOutput(4),
     PythonPadStatics: lambda: PythonPadStatics(linkage_pad_statics()),
     DeviceWatchdog: DeviceWatchdog,
-    FaultLatch: lambda: FaultLatch(["watchdog", "gripper"]),
+    FaultLatch: lambda: FaultLatch(["watchdog", "gripper", "tactile"]),
     JacoVelocityTracker: JacoVelocityTracker,
     JacoCommandSender: JacoCommandSender,
     JacoCommandReceiver: JacoCommandReceiver,

@@ -16,7 +16,7 @@ realtime.py: real-time scheduling of the control loop.
 lcm_time.py, state_outputs.py: utime conversion; scalar ports from a receiver's state."""
 
 from tegrasp_drake.hardware.device_fault import (
-    DEVICE_FAULT, DRIVER_ERROR, SILENT, DeviceFault, describe_faults)
+    DEVICE_FAULT, DRIVER_ERROR, IMPLAUSIBLE, SILENT, DeviceFault, describe_faults)
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, GRIPPER_CHANNEL, RUN_INFO_CHANNEL, TACTILE_CHANNEL, TRANSITION_CHANNEL,
     GripperStatusSender, TactileStatusSender, tactile_arrays)

@@ -9,11 +9,12 @@ import datetime
 SILENT = "silent"            # the device stopped talking (watchdog)
 DEVICE_FAULT = "device"      # the device reported a fault code (e.g. Robotiq gFLT)
 DRIVER_ERROR = "driver"      # the driver could not bring the device up (e.g. activation)
-KINDS = (SILENT, DEVICE_FAULT, DRIVER_ERROR)
+IMPLAUSIBLE = "implausible"  # the device's data cannot be true (its clock outruns the host's)
+KINDS = (SILENT, DEVICE_FAULT, DRIVER_ERROR, IMPLAUSIBLE)
 # The devices a fault names: the watchdog's (watchdog.DEFAULT_TIMEOUTS) and the gripper
 # driver's (RobotiqDriver's `device`).
 DEVICES = ("arm", "gripper", "tactile")
-NO_CODE = -1  # a fault's `code` when the device gave none (SILENT, DRIVER_ERROR)
+NO_CODE = -1  # a fault's `code` when the device gave none (all but DEVICE_FAULT)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -26,6 +26,7 @@ class FaultLatch(LeafSystem):
         input_ports:
         - watchdog_fault
         - gripper_fault
+        - tactile_fault
         output_ports:
         - fault
         - message

@@ -274,9 +274,11 @@ class HardwareStation(Diagram):
                         watchdog.GetInputPort("gripper_time_measured"))
         builder.Connect(tactile.GetOutputPort("time_measured"),
                         watchdog.GetInputPort("tactile_time_measured"))
-        faults = builder.AddNamedSystem("fault_latch", FaultLatch(["watchdog", "gripper"]))
+        faults = builder.AddNamedSystem("fault_latch", FaultLatch(["watchdog", "gripper",
+                                                                   "tactile"]))
         builder.Connect(watchdog.GetOutputPort("fault"), faults.GetInputPort("watchdog_fault"))
         builder.Connect(gripper.GetOutputPort("fault"), faults.GetInputPort("gripper_fault"))
+        builder.Connect(tactile.GetOutputPort("fault"), faults.GetInputPort("tactile_fault"))
         builder.Connect(faults.GetOutputPort("stop"), jaco.tracker.GetInputPort("stop"))
         builder.ExportOutput(faults.GetOutputPort("fault"), ports.FAULT)
         builder.ExportOutput(faults.GetOutputPort("message"), ports.DEVICE_FAULT)

@@ -10,7 +10,8 @@ import struct
 class lcmt_tegrasp_fault(object):
     """
     A device fault seen by the hardware station (channel TEGRASP_FAULT), once per fault:
-    a silent device (watchdog), a device's own fault code, or a driver error.
+    a silent device (watchdog), a device's own fault code, a driver error, or a device
+    whose data cannot be true (the myRIO's clock running ahead of the host's).
     """
 
     __slots__ = ["utime", "device", "kind", "code", "description", "since_utime", "since_wall_utime"]
@@ -36,7 +37,7 @@ class lcmt_tegrasp_fault(object):
 
         self.code = 0
         """
-        silent, device, driver
+        silent, device, driver, implausible
         LCM Type: int32_t
         """
 

@@ -88,7 +88,7 @@ NO_FAULT = "are no fault the station reports (the first: "
     (dict(device="toaster"), NO_FAULT + "device 'toaster' is none of arm, gripper, tactile"),
     (dict(device="w" * 100_000), NO_FAULT + "device 'wwwwwwww"),
     (dict(kind="explosion", code=99999), NO_FAULT + "kind 'explosion' is none of silent, "
-                                                    "device, driver"),
+                                                    "device, driver, implausible"),
     (dict(kind="device", code=99999), NO_FAULT + "a device fault's code 99999 is no fault "
                                                  "code (a gFLT register byte, 1 to 255)"),
     (dict(code=7), NO_FAULT + "a silent fault's code is -1 (none), got 7"),

@@ -1,7 +1,9 @@
 """The myRIO tactile stream as a Drake system with the simulated pads' ports. Every `period` (1 ms)
 an update drains the reader thread's frames without blocking and calibrates them. A burst is played
 one frame per tick, two while more than two wait, all but `max_backlog` beyond that, keeping the
-newest counts and the largest piezo sample (docs/hardware.md, "Serial bursts and the slip band")."""
+newest counts and the largest piezo sample (docs/hardware.md, "Serial bursts and the slip band").
+The frames' device times are checked against their arrival (device_clock.py): a stream that
+runs ahead of the host's clock is a fault on the `fault` port."""
 
 import dataclasses
 import time
@@ -12,6 +14,9 @@ from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.hardware.state_outputs import declare_scalar_state_outputs
+from tegrasp_drake.hardware.device_fault import IMPLAUSIBLE, DeviceFault
+from tegrasp_drake.hardware.myrio.device_clock import (
+    DeviceClock, device_clock_after_frames, implausible_clock_description)
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     PadCalibration, PadZeroing, TactileCalibration, acceleration_from_piezo,
     forces_from_counts)
@@ -35,6 +40,8 @@ class TactileReceiverState:
     played_arrival_time: float = -np.inf  # time.monotonic() [s] the played frame arrived
     played_samples: np.ndarray = dataclasses.field(  # (n, 2) [m/s^2] played in the last tick
         default_factory=lambda: _NO_SAMPLES)  # noqa: the one empty array, never changed
+    clock: DeviceClock = DeviceClock()  # the device's clock against the frames' arrival
+    faults: tuple = ()                  # DeviceFault: the implausible clock, once seen
 
     def __deepcopy__(self, memo):
         # Immutable (replaced, never changed), so Drake's 1 kHz Context copies can share it.
@@ -87,6 +94,10 @@ def receiver_state_after_tick(state: TactileReceiverState, received, calibration
                               TactileCalibration, max_backlog: int) -> TactileReceiverState:
     """The state after a tick that received these frames (oldest first): one frame played, two
     while more than two wait, more when over `max_backlog` wait; all while zeroing. Pure."""
+    if received:
+        clock = device_clock_after_frames(state.clock, received)
+        if clock is not state.clock:
+            state = dataclasses.replace(state, clock=clock)
     pending = state.pending + tuple(received)
     if not pending:
         return (state if not len(state.played_samples) else
@@ -115,11 +126,14 @@ class TactileSerialReceiver(LeafSystem):
         - stale
         - arrival_time
         - zeroing
+        - fault
 
     Ports: taxel forces (12) [N]; pad accelerations (3) [m/s^2], the film's value in the pad
     frame's x; samples: (n, 6) rows [left xyz, right xyz] played in the tick; time_measured:
     the played frame's device time [s]; stale: 1 after `stale_timeout` [s] without a frame;
-    arrival_time: its host time.monotonic() [s]; zeroing: 1 until zeroed.
+    arrival_time: its host time.monotonic() [s]; zeroing: 1 until zeroed; fault: a tuple of
+    DeviceFault, empty while the frames' device time keeps to the host's (device_clock.py),
+    else the IMPLAUSIBLE fault (latched).
     """
 
     def __init__(self, reader, *, calibration: TactileCalibration | None = None,
@@ -150,6 +164,10 @@ class TactileSerialReceiver(LeafSystem):
             "stale": lambda state: state.stale,
             "arrival_time": lambda state: state.played_arrival_time,
             "zeroing": lambda state: not state.zeroed})
+        self.DeclareAbstractOutputPort(
+            "fault", lambda: AbstractValue.Make(()),
+            lambda context, out: out.set_value(self._state(context).faults),
+            prerequisites_of_calc=state_ticket)
 
     @property
     def reader(self):
@@ -188,6 +206,12 @@ class TactileSerialReceiver(LeafSystem):
         stale = time.monotonic() - new.arrival_time > self._stale_timeout
         if stale != new.stale:
             new = dataclasses.replace(new, stale=stale)
+        if new.clock.implausible and not new.faults:
+            description = implausible_clock_description(
+                new.clock, self._reader.port, self._reader.counters().queue_overflows)
+            new = dataclasses.replace(new, faults=(DeviceFault(
+                "tactile", IMPLAUSIBLE, description, since_sim_time=context.get_time(),
+                since_wall_time=time.time()),))
         state.get_mutable_abstract_state(self._state_index).set_value(new)
 
     def _calc_samples(self, context, output):
