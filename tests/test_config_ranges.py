@@ -248,9 +248,69 @@ def test_a_matcher_or_event_rate_too_slow_for_the_window_is_refused(field):
 
     from tegrasp_drake.events.event_matcher import check_matcher_config
     from tegrasp_drake.events.memorized_event import MemorizedEvent
-    with pytest.raises(ConfigError, match=rf"field '{field}' must be at least 16 Hz"):
+    with pytest.raises(ConfigError, match=rf"field '{field}' must lie in \[16, 20000\] Hz"):
         check_matcher_config(EventMatcherConfig(**{field: 1e-9}))
-    with pytest.raises(ConfigError, match=rf"field '{field}' must be at least 16 Hz"):
+    with pytest.raises(ConfigError, match=rf"field '{field}' must lie in \[16, 20000\] Hz"):
         MemorizedEvent(object_name="box", transition="reach_load", sa=np.ones((2, 8)),
                        ra=np.ones((2, 8)), **({"sa_rate_hz": 16.0, "ra_rate_hz": 16.0}
                                               | {field: 1e-9}))
+
+
+# Rule: every public rate, window, block and read period that sizes an allocation (a window's
+# samples, a block's input port) has an upper bound declared once (rig/ranges.py: the
+# scenario's sensors' 20 kHz is the matcher's and the normalizer's), refused at construction
+# in one line naming the field and its range, before anything is allocated.
+@pytest.mark.parametrize("build, words", [
+    (lambda: EventMatcherConfig(sa_rate_hz=1e9),
+     "EventMatcherConfig: field 'sa_rate_hz' must lie in [16, 20000] Hz"),
+    (lambda: EventMatcherConfig(ra_rate_hz=1e9),
+     "EventMatcherConfig: field 'ra_rate_hz' must lie in [16, 20000] Hz"),
+    (lambda: EventMatcherConfig(block_s=1e6),
+     "EventMatcherConfig: field 'block_s' must lie in [0, 0.1] s"),
+    (lambda: EventMatcherConfig(read_period_s=1e6),
+     "EventMatcherConfig: field 'read_period_s' must lie in [0, 0.1] s"),
+    (lambda: _window_normalizer_config(sa_rate_hz=1e9),
+     "WindowNormalizerConfig: field 'sa_rate_hz' must lie in [16, 20000] Hz"),
+    (lambda: _window_normalizer_config(window_s=1e6),
+     "WindowNormalizerConfig: field 'window_s' must lie in (0, 10] s"),
+    (lambda: _memorized_event(ra_rate_hz=1e9),
+     "MemorizedEvent: field 'ra_rate_hz' must lie in [16, 20000] Hz"),
+])
+def test_a_rate_or_window_too_large_to_allocate_is_refused_at_construction(build, words):
+    with pytest.raises(ConfigError) as refused:
+        build()
+    assert str(refused.value).startswith(words), str(refused.value)
+    assert "\n" not in str(refused.value)
+
+
+def _window_normalizer_config(**fields):
+    from tegrasp_drake.tactile.window_normalizer import WindowNormalizerConfig
+    return WindowNormalizerConfig(**fields)
+
+
+def _memorized_event(**rates):
+    import numpy as np
+
+    from tegrasp_drake.events.memorized_event import MemorizedEvent
+    return MemorizedEvent(object_name="box", transition="reach_load", sa=np.ones((2, 8)),
+                          ra=np.ones((2, 8)), **({"sa_rate_hz": 16.0, "ra_rate_hz": 16.0} | rates))
+
+
+def test_a_rate_changed_after_construction_is_refused_before_the_matcher_allocates():
+    from tegrasp_drake.events.event_matcher import EventMatcher
+    from tegrasp_drake.events.events_folder import load_memorized_events
+    config = EventMatcherConfig()
+    config.sa_rate_hz = 40_000.0  # cheap to allocate, were it not refused
+    with pytest.raises(ConfigError, match=r"field 'sa_rate_hz' must lie in \[16, 20000\] Hz"):
+        EventMatcher(load_memorized_events(paths.package_events_dir(), "box"), config)
+
+
+def test_the_matchers_rates_share_the_sensors_declared_range():
+    from tegrasp_drake.rig.ranges import SAMPLE_RATE, field_range
+    from tegrasp_drake.simulation.tactile_pads import TactileSensorConfig
+    from tegrasp_drake.tactile.window_normalizer import WindowNormalizerConfig
+    for cls, name in ((EventMatcherConfig, "sa_rate_hz"), (EventMatcherConfig, "ra_rate_hz"),
+                      (WindowNormalizerConfig, "sa_rate_hz"),
+                      (TactileSensorConfig, "sample_rate_hz"),
+                      (VibrationSensorConfig, "sample_rate_hz")):
+        assert field_range(cls, name) is SAMPLE_RATE, (cls, name)

@@ -9,7 +9,7 @@ import typing
 from tegrasp_drake.rig.api_boundary import public_dataclass, register_moved_fields
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.objects import ENSEMBLE_EVENTS_FOLDER
-from tegrasp_drake.rig.ranges import bounded, distinct_names
+from tegrasp_drake.rig.ranges import READ_PERIOD, SAMPLE_BLOCK, bounded, distinct_names, within
 from tegrasp_drake.rig.unset_fields import unset_when_empty
 
 
@@ -291,11 +291,10 @@ class MemorizedCorrectiveConfig:
 class GraspControllerConfig:
     """The closed-loop controllers' settings: tick, contact force, a section per correction."""
     # state machine tick [s]
-    update_period_s: float = bounded(0.005, low=0.0, low_open=True, high=0.1, unit="s",
+    update_period_s: float = bounded(0.005, low=0.0, low_open=True, high=READ_PERIOD.high, unit="s",
                                      below="must be positive [s]")
     # film samples in blocks of this long [s] (tactile/sample_block.py); 0: per sample
-    sensor_block_s: float = bounded(0.0, low=0.0, high=0.1, unit="s",
-                                    below="must be zero (one update per sample) or positive [s]")
+    sensor_block_s: float = within(0.0, SAMPLE_BLOCK)
     # contact of a finger, of a taxel [N] (10x a force taxel's 5 mN noise)
     contact_force_n: float = bounded(0.3, low=0.0, high=50.0, unit="N",
                                      below="must be zero or positive [N]")

@@ -11,8 +11,8 @@ import numpy as np
 from tegrasp_drake.rig.api_boundary import check_field_values, public_api, public_dataclass
 from tegrasp_drake.rig.event_matching import SCORE_RANGE, EventMatchingConfig
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, Range,
-                                      bounded, declared_field, number_problem, real_number)
+from tegrasp_drake.rig.ranges import (READ_PERIOD, SAMPLE_BLOCK, SAMPLE_RATE, Range, bounded,
+                                      declared_field, number_problem, real_number, within)
 from tegrasp_drake.rig.typed_yaml import ConfigError
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.events.correlation import template_is_flat
@@ -42,18 +42,19 @@ class EventMatcherConfig:
     min_contrast: float = bounded(0.25, low=0.0, low_open=True, below="must be positive")
     flat_template_needs_flat_window: bool = declared_field(EventMatchingConfig,
                                                            "flat_template_needs_flat_window")
-    sa_rate_hz: float = bounded(100.0, low=EVENT_WINDOW_RATE_LOW_HZ, unit="Hz",
-                                why=EVENT_WINDOW_RATE_WHY)
-    ra_rate_hz: float = bounded(1000.0, low=EVENT_WINDOW_RATE_LOW_HZ, unit="Hz",
-                                why=EVENT_WINDOW_RATE_WHY)
+    sa_rate_hz: float = within(100.0, SAMPLE_RATE)  # the sensors' rates' range
+    ra_rate_hz: float = within(1000.0, SAMPLE_RATE)
     # block [s] scored in one update (0: per sample); a match shows at most a block late
-    block_s: float = bounded(0.0, low=0.0, unit="s")
+    block_s: float = within(0.0, SAMPLE_BLOCK)
     # the reader's tick [s] (tactile/read_batch.py); 0: read any time (so with an RA floor)
-    read_period_s: float = bounded(0.0, low=0.0, unit="s")
+    read_period_s: float = within(0.0, READ_PERIOD)
     ra_envelope_hz: float = declared_field(EventMatchingConfig, "ra_envelope_hz")
     # RA noise floor m + k s over the first quiet seconds (events/ra_noise_floor.py)
     ra_noise_floor_sigmas: float = declared_field(EventMatchingConfig, "ra_noise_floor_sigmas")
     ra_noise_quiet_s: float = declared_field(EventMatchingConfig, "ra_noise_quiet_s")
+
+    def __post_init__(self):
+        check_field_values(self)  # a rate or block out of range: refused before it allocates
 
 
 def check_matcher_config(config: EventMatcherConfig) -> None:

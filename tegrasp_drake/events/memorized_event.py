@@ -10,7 +10,7 @@ import numpy as np
 import tegrasp_drake
 from tegrasp_drake.rig.api_boundary import array_problem, check_field_values, public_dataclass
 from tegrasp_drake.rig.number_text import number_text
-from tegrasp_drake.rig.ranges import EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded
+from tegrasp_drake.rig.ranges import EVENT_WINDOW, SAMPLE_RATE, bounded, within
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
 from tegrasp_drake.rig.objects import (DESCRIPTION_FIELDS, description_problem,
                                        object_name_problem)
@@ -34,9 +34,9 @@ class MemorizedEvent:
     transition: str
     sa: np.ndarray
     ra: np.ndarray
-    sa_rate_hz: float = bounded(low=EVENT_WINDOW_RATE_LOW_HZ, unit="Hz", why=EVENT_WINDOW_RATE_WHY)
-    ra_rate_hz: float = bounded(low=EVENT_WINDOW_RATE_LOW_HZ, unit="Hz", why=EVENT_WINDOW_RATE_WHY)
-    window_s: float = bounded(0.5, low=0.0, low_open=True, unit="s")
+    sa_rate_hz: float = within(dataclasses.MISSING, SAMPLE_RATE)
+    ra_rate_hz: float = within(dataclasses.MISSING, SAMPLE_RATE)
+    window_s: float = within(0.5, EVENT_WINDOW)
     # [s] from the window's start to the transition, within the window
     pre_transition_s: float = bounded(0.25, low=0.0, unit="s")
     transition_time_s: float = bounded(0.0, low=0.0, unit="s",

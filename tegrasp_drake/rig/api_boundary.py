@@ -174,6 +174,7 @@ def _check_bound(name: str, signature, hints: dict, bound) -> None:
             with relations_checked():  # its own public calls: not again
                 relations(f"{name}: {argument}")  # its ranges too, as the builders' rechecked
     for argument, value in bound.arguments.items():  # every type is right: the values
+        _check_path_text(name, argument, value, hints.get(argument))
         constraints = _constraints(hints.get(argument))[1]
         if not any(isinstance(c, Folder) for c in constraints):  # a Folder says it itself
             _check_path_given(name, argument, value, hints.get(argument),
@@ -189,6 +190,24 @@ def _takes_path(hint) -> bool:
         return True
     return any(_takes_path(member) for member in typing.get_args(hint)
                if typing.get_origin(hint) in (typing.Union, types.UnionType))
+
+
+def _check_path_text(function: str, name: str, value, hint) -> None:
+    """UserPathError when a file or folder name argument (a PathLike one, with or without a
+    Folder constraint) holds a NUL byte, which no operating system takes in a path (its
+    readers would fail with a bare "embedded null byte"), naming the argument and the
+    byte's position."""
+    if not (isinstance(value, (str, os.PathLike)) and _takes_path(hint)):
+        return
+    text = os.fspath(value)
+    position = text.find(b"\0" if isinstance(text, bytes) else "\0")
+    if position < 0:
+        return
+    from tegrasp_drake.rig.files import UserPathError
+    what = "folder" if name.endswith(("_dir", "folder")) else "file"
+    raise UserPathError(f"{function}: argument '{name}' holds a NUL byte at position "
+                        f"{position} ({shown(text)}): no {what} name can hold one; "
+                        "remove it")
 
 
 def _check_path_given(function: str, name: str, value, hint, default) -> None:

@@ -82,6 +82,30 @@ FAULT_DELAY = Range(low=0.0, high=HARDWARE_RUN_DURATION.high, unit="s",
 EVENT_WINDOW_RATE_LOW_HZ = 16.0
 EVENT_WINDOW_RATE_WHY = "a 0.5 s event window needs 8 samples"
 
+# The fastest tactile sampling [Hz]: the films are integrated at 20 kHz (simulation/
+# film_dynamics.py); the high end of the sensors' sample rates and of the rates the
+# EventMatcher, the WindowNormalizer and a memorized event are sampled at (a window's
+# samples are allocated: at 1 GHz a 0.5 s window would be gigabytes).
+EVENT_WINDOW_RATE_HIGH_HZ = 20_000.0
+SAMPLE_RATE_WHY = f"{EVENT_WINDOW_RATE_WHY}; the film is integrated at 20 kHz"
+SAMPLE_RATE = Range(low=EVENT_WINDOW_RATE_LOW_HZ, high=EVENT_WINDOW_RATE_HIGH_HZ, unit="Hz",
+                    why=SAMPLE_RATE_WHY)
+
+# An event window [s] (Sec. III-A: 0.5 s), as the EventMatcher and the WindowNormalizer
+# slide it and a memorized event holds it: its samples are allocated at each rate.
+EVENT_WINDOW = Range(low=0.0, low_open=True, high=10.0, unit="s",
+                     why="the paper's window is 0.5 s; a 10 s one spans a whole grasp")
+
+# A block of film samples taken in one update [s] (tactile/sample_block.py; 0: one update per
+# sample): the controller's sensor_block_s, the EventMatcher's and WindowNormalizer's block_s.
+SAMPLE_BLOCK = Range(low=0.0, high=0.1, unit="s",
+                     below="must be zero (one update per sample) or positive [s]")
+
+# The tick of the one reader of the tactile samples [s] (tactile/read_batch.py; 0: read at
+# each sample): the controller's update period reads them, at most 0.1 s.
+READ_PERIOD = Range(low=0.0, high=0.1, unit="s",
+                    why="the controller's tick, at most 0.1 s; 0: at each sample")
+
 # A seed [-] (a scenario's random_seed, a sweep's base_seed, MakeGraspStation's random_seed).
 SEED_RANGE = Range(low=0, high=2**32 - 1,
                    why="Drake's random generator takes a 32-bit seed; a larger one would repeat a "
@@ -117,6 +141,11 @@ def bounded(default=dataclasses.MISSING, *, low=None, high=None, unit: str = "",
     range is each element's, and `length` how many elements it must hold."""
     return dataclasses.field(default=default, default_factory=default_factory, metadata={
         _KEY: Range(low, high, unit, why, low_open, high_open, below, length)})
+
+
+def within(default, declared: Range):
+    """A dataclass field taking the Range `declared` (one declared for several fields)."""
+    return dataclasses.field(default=default, metadata={_KEY: declared})
 
 
 def chosen(default, *, names: tuple[str | int, ...], why: str = ""):

@@ -26,7 +26,7 @@ import yaml
 from tegrasp_drake.rig.core_schema_yaml import (CORE_FLOAT, FLOAT_TAG, INT_TAG, compose,
                                                 construct, yaml11_only_boolean,
                                                 yaml11_only_number)
-from tegrasp_drake.rig.echo import shorten, shown, undecoded_byte
+from tegrasp_drake.rig.echo import ECHO_CHARS, shorten, shown, undecoded_byte
 from tegrasp_drake.rig.integer_text import IntegerTextError, read_integer
 from tegrasp_drake.rig.number_text import float_beyond_problem, number_text
 from tegrasp_drake.rig.ranges import holds_settings, number_problem, python_scalar, range_of
@@ -500,14 +500,17 @@ def set_words(assignment: str, option: str = "--set") -> str:
     return f"{option} '{shorten(key)}{equals}{shorten(text)}'"
 
 
-def _echo(assignment: str) -> str:
-    """An assignment as an error's source names it (`KEY=VALUE`), its parts cut (shorten)."""
+def _echo(assignment: str, limit: int = ECHO_CHARS) -> str:
+    """An assignment as an error's source names it (`KEY=VALUE`), its parts cut (shorten)
+    to about `limit` characters each."""
     key, equals, value = assignment.partition("=")
-    return shorten(key) + equals + shorten(value)
+    return shorten(key, limit) + equals + shorten(value, limit)
 
 
 # A source longer than this names only the assignments at fault (loaded_with_overrides).
 MAX_SOURCE_CHARACTERS = 200
+# How much of each assignment a long source keeps when the message names none of them.
+UNNAMED_ASSIGNMENT_CHARS = 40
 
 
 def loaded_with_overrides(load, file_source: str, overrides: typing.Sequence[str],
@@ -518,7 +521,10 @@ def loaded_with_overrides(load, file_source: str, overrides: typing.Sequence[str
     blamed on the file. When the whole list is long (over MAX_SOURCE_CHARACTERS: a preset's
     or a sweep's many assignments would bury the one at fault) only the assignments whose
     setting the message names are kept, with how many others there were; a short list stays
-    whole: a rule across settings may be broken by one it does not name."""
+    whole: a rule across settings may be broken by one it does not name. When the message
+    names none of them (a rule across settings, named by another field), every assignment
+    is kept, each cut to about UNNAMED_ASSIGNMENT_CHARS with its start kept, so that the one
+    at fault can still be seen."""
     source = file_source + "".join(f" {option} {_echo(a)}" for a in overrides)
     try:
         return load(source)
@@ -528,6 +534,10 @@ def loaded_with_overrides(load, file_source: str, overrides: typing.Sequence[str
             raise
         rest = message[len(source):]
         named = [a for a in overrides if f"'{assignment_key(a)}" in rest]
+        if not named:
+            raise ConfigError(file_source + "".join(
+                f" {option} {_echo(a, UNNAMED_ASSIGNMENT_CHARS)}" for a in overrides)
+                + rest) from None
         others = len(overrides) - len(named)
         raise ConfigError(file_source + "".join(f" {option} {_echo(a)}" for a in named)
                           + (f" (and {others} other {option})" if others else "")

@@ -6,7 +6,7 @@ z (the inward normal). The model and every number: docs/model.md, "Vibration (RA
 import dataclasses
 import math
 
-from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded,
+from tegrasp_drake.rig.ranges import (SAMPLE_RATE, bounded, within,
                                       chosen, field_range)
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_DISSIPATION
 from tegrasp_drake.rig.tactile_fingertip import PAD_LENGTH, PAD_THICKNESS, PAD_WIDTH
@@ -87,9 +87,7 @@ class FilmConfig:
 @dataclasses.dataclass
 class VibrationSensorConfig:
     """The PVDF film of each pad (RA source); each number: docs/model.md, "Vibration (RA) model"."""
-    sample_rate_hz: float = bounded(1000.0, low=EVENT_WINDOW_RATE_LOW_HZ, high=20_000.0,
-                                    unit="Hz", why=f"{EVENT_WINDOW_RATE_WHY}; the film is "
-                                                   "integrated at 20 kHz")
+    sample_rate_hz: float = within(1000.0, SAMPLE_RATE)
     noise_std_mps2: float = bounded(0.05, low=0.0, high=100.0, unit="m/s^2",
                                     why="the film's noise is a few hundredths; 100 would bury "
                                         "every event",

@@ -15,7 +15,7 @@ from pydrake.multibody.plant import ContactResults
 from pydrake.systems.framework import LeafSystem
 
 from tegrasp_drake.modelgen.robotiq_sdf import PAD_MODULUS
-from tegrasp_drake.rig.ranges import (EVENT_WINDOW_RATE_LOW_HZ, EVENT_WINDOW_RATE_WHY, bounded,
+from tegrasp_drake.rig.ranges import (SAMPLE_RATE, bounded, within,
                                       chosen)
 from tegrasp_drake.rig.channels import FINGER_NAMES, TAXELS_PER_PAD
 from tegrasp_drake.robotiq.units import FORCE_MAX_N
@@ -46,9 +46,7 @@ class TactileSensorConfig:
     pad_modulus_pa: float = bounded(PAD_MODULUS, low=1e5, high=5e7, unit="Pa",
                                     why="an elastomer: a gel-soft silicone is about 0.1 MPa, "
                                         "a hard rubber tens of MPa")
-    sample_rate_hz: float = bounded(108.0, low=EVENT_WINDOW_RATE_LOW_HZ, high=20_000.0,
-                                    unit="Hz", why=f"{EVENT_WINDOW_RATE_WHY}; the film is "
-                                                   "integrated at 20 kHz")
+    sample_rate_hz: float = within(108.0, SAMPLE_RATE)
     # per taxel, Gaussian
     noise_std_n: float = bounded(0.005, low=0.0, high=1.0, unit="N",
                                  why="a taxel's noise is a few mN; 1 N would bury the 0.3 N "

@@ -7,10 +7,12 @@ from collections.abc import Mapping
 import numpy as np
 from pydrake.systems.framework import LeafSystem
 
-from tegrasp_drake.rig.api_boundary import public_api
+from tegrasp_drake.rig.api_boundary import check_field_values, public_api
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS, SA_CHANNELS
 from tegrasp_drake.rig.echo import shown
 from tegrasp_drake.rig.number_text import count_text, number_text
+from tegrasp_drake.rig.ranges import (EVENT_WINDOW, READ_PERIOD, SAMPLE_BLOCK, SAMPLE_RATE,
+                                      within)
 from tegrasp_drake.tactile.max_normalization import normalize_by_max
 from tegrasp_drake.tactile.read_batch import (AddHeldSampleRegister, batch_first_sample,
                                               batch_update_offset, samples_per_read)
@@ -25,11 +27,14 @@ class WindowNormalizerConfig:
     """Window [s], SA and RA rates [Hz], the block [s] a rate takes per update (0: per sample;
     sample_block.py), and read_period_s, the one reader's tick [s] (0: any time; else a per-sample
     rate takes each tick's samples in one update just before it, read_batch.py)."""
-    window_s: float = 0.5
-    sa_rate_hz: float = 100.0
-    ra_rate_hz: float = 1000.0
-    block_s: float = 0.0
-    read_period_s: float = 0.0
+    window_s: float = within(0.5, EVENT_WINDOW)
+    sa_rate_hz: float = within(100.0, SAMPLE_RATE)
+    ra_rate_hz: float = within(1000.0, SAMPLE_RATE)
+    block_s: float = within(0.0, SAMPLE_BLOCK)
+    read_period_s: float = within(0.0, READ_PERIOD)
+
+    def __post_init__(self):
+        check_field_values(self)  # a window's samples are allocated: refused out of range
 
     def rate_groups(self) -> tuple[RateGroup, ...]:
             return rate_groups(sa_rate_hz=self.sa_rate_hz, ra_rate_hz=self.ra_rate_hz,

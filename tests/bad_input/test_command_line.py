@@ -788,3 +788,21 @@ def test_a_docs_command_line_that_does_not_parse_is_one_line(main, argv, words, 
     assert exit_.value.code == 2 and captured.out == "", captured
     assert captured.err.count("\n") == 1 and "usage:" not in captured.err, captured.err
     assert words in captured.err, captured.err
+
+
+# Rule: a long --set list whose refusal names a field none of its assignments set (a rule
+# across settings: object.shape's value is refused under object.name) still shows every
+# assignment, each cut to a readable length with its start kept, so the user sees which of
+# several --set was wrong; never "(and 2 other --set)" with none shown.
+def test_a_long_set_refused_under_another_field_is_shown(tmp_path, monkeypatch, capfd):
+    from tegrasp_drake.rig.echo import ECHO_CHARS
+    monkeypatch.chdir(tmp_path)
+    shape = "object.shape=sphere" + "e" * 200
+    code, text = run_cli(["trial", "--set", shape, "--set", "grasp.grip_force=50",
+                          "--out", "o"], capfd)
+    assert_one_line_error(code, text, "--set object.shape=sphereeeee",
+                          "--set grasp.grip_force=50", "field 'object.name'")
+    assert "other --set" not in text
+    source = text.split(": field 'object.name'")[0]
+    assert len(source.split("--set object.shape=")[1].split(" --set")[0]) < ECHO_CHARS, source
+    assert not (tmp_path / "o").exists()

@@ -636,3 +636,64 @@ def test_every_public_file_name_argument_is_checked_for_the_empty_name():
                     and (name, argument) not in _EMPTY_FILE_NAME_CALLS:
                 unchecked.append((name, argument))
     assert unchecked == []
+
+
+# Rule: a file or folder name given to the public API that holds a NUL byte (which no
+# operating system takes in a path) is refused at the API boundary in one line naming the
+# argument and the byte's position, never Python's bare "embedded null byte" from deep in
+# a reader; every PathLike argument of every public function is checked (the set below is
+# compared with the signatures).
+def _nul_calls(path) -> dict:
+    from tests.fake_trials import fake_trial
+    spec = T.SweepSpec(objects=("box",), controllers=("open_loop",), grid=((0.0, 0.0),),
+                       attempts=1)
+    return {
+        ("LoadScenario", "filename"): lambda: T.LoadScenario(filename=path),
+        ("LoadHardwareConfig", "filename"): lambda: T.LoadHardwareConfig(path),
+        ("LoadSweepSpec", "path"): lambda: T.LoadSweepSpec(path),
+        ("load_trial_log", "path"): lambda: T.load_trial_log(path),
+        ("load_memorized_events", "events_dir"): lambda: T.load_memorized_events(path, "box"),
+        ("load_controller_events", "events_dir"):
+            lambda: T.load_controller_events(LoadScenario(), path),
+        ("load_corrective_events", "events_dir"):
+            lambda: T.load_corrective_events(LoadScenario(), path),
+        ("load_records", "out_dir"): lambda: T.load_records(path),
+        ("write_reports", "out_dir"): lambda: T.write_reports(path),
+        ("save_memorized_events", "events_dir"): lambda: T.save_memorized_events(path, []),
+        ("run_sweep", "out_dir"):
+            lambda: T.run_sweep(spec, fake_trial, path, workers=1, progress=False),
+        ("run_trial_from_spec", "events_dir"): lambda: T.run_trial_from_spec({}, events_dir=path),
+        ("run_trial_from_spec", "log_dir"): lambda: T.run_trial_from_spec({}, log_dir=path),
+        ("run_on_hardware", "log_path"): lambda: T.run_on_hardware(LoadScenario(), log_path=path),
+        ("run_on_hardware", "events_dir"):
+            lambda: T.run_on_hardware(LoadScenario(), events_dir=path),
+    }
+
+
+@pytest.mark.parametrize("function, argument", sorted(_nul_calls("")))
+@pytest.mark.parametrize("as_path", [False, True])
+def test_a_file_name_holding_a_nul_byte_is_refused_naming_its_argument_and_position(
+        tmp_path, monkeypatch, function, argument, as_path):
+    import pathlib
+    monkeypatch.chdir(tmp_path)
+    path = "ok/a\0b" if not as_path else pathlib.Path("ok/a\0b")
+    with pytest.raises(OSError) as refused:
+        _nul_calls(path)[function, argument]()
+    text = str(refused.value)
+    assert text.startswith(f"{function}: argument '{argument}' holds a NUL byte at "
+                           "position 4 "), text
+    assert "remove it" in text and "\n" not in text and "\0" not in text
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_every_public_file_name_argument_is_checked_for_a_nul_byte():
+    """The calls above cover every PathLike argument of every public function."""
+    taken = set()
+    for name in tegrasp_drake.__all__:
+        function = getattr(tegrasp_drake, name)
+        if inspect.isclass(function) or not callable(function):
+            continue
+        hints = typing.get_type_hints(inspect.unwrap(function), include_extras=True)
+        taken |= {(name, argument) for argument, hint in hints.items()
+                  if argument != "return" and _takes_a_path(hint)}
+    assert taken == set(_nul_calls(""))
