@@ -24,7 +24,7 @@ def check_events_folder(events) -> None:
     from tegrasp_drake.events.event_file import events_folder_problem
     problem = events_folder_problem(events, writing=False)
     if problem:
-        raise UserPathError(f"--events {events}: {problem}")
+        raise UserPathError(f"--events {events} {problem}")
 
 
 def _refuse_a_variable_folder_of_other_files() -> None:

@@ -18,7 +18,8 @@ import pathlib
 
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.events_option import check_events_folder
-from tegrasp_drake.figures.figure_files import FIGURE_FORMATS, figure_replace_problem
+from tegrasp_drake.figures.figure_files import (FIGURE_FORMATS, MAX_LINES_TOLD_APART,
+                                                figure_replace_problem)
 from tegrasp_drake.rig.files import output_file_problem
 from tegrasp_drake.rig import paths
 from tegrasp_drake.rig.echo import shown
@@ -54,6 +55,10 @@ def register(subparsers) -> None:
     parser.add_argument("--events", default=None, metavar="DIR",
                         help="events folder (default: $TEGRASP_EVENTS_DIR or "
                         "~/.local/share/tegrasp/events, then the package's)")
+    parser.add_argument("--object", action="append", default=None, metavar="NAME",
+                        help="events: plot this object's memorized events (repeat for more; "
+                        f"at most {MAX_LINES_TOLD_APART} in a figure; default: every "
+                        "object's)")
     parser.add_argument("--format", choices=FIGURE_FORMATS, default=None,
                         help="file format (default: --out's suffix, else png)")
     parser.add_argument("--out", default=None,
@@ -110,7 +115,29 @@ def _plot_events(args, out) -> str:
                 events.update(loaded)
     except MemorizedEventError as e:
         raise SystemExit(f"{ERROR_LEAD}{e}") from None
-    return str(plot_memorized_events(events, out))
+    return str(plot_memorized_events(_objects_picked(args, events), out))
+
+
+def _objects_picked(args, events: dict) -> dict:
+    """The events of the objects --object names (each must have events), else of every
+    object; exits when they are more than a figure tells apart (MAX_LINES_TOLD_APART)."""
+    from tegrasp_drake.rig.echo import shorten
+    where = args.events or "the events folders"
+    if args.object:
+        unknown = [name for name in args.object if name not in events]
+        if unknown:
+            raise SystemExit(f"{ERROR_LEAD}--object {shown(unknown[0])}: no memorized events "
+                             f"of that object in {where}; its objects: "
+                             f"{shorten(', '.join(sorted(events)) or 'none', 200)}")
+        events = {name: events[name] for name in dict.fromkeys(args.object)}
+    if len(events) > MAX_LINES_TOLD_APART:
+        names = sorted(events)
+        raise SystemExit(
+            f"{ERROR_LEAD}{where} holds the memorized events of {len(events)} objects "
+            f"({shorten(', '.join(names), 120)}); a figure tells at most "
+            f"{MAX_LINES_TOLD_APART} apart: pick them with --object NAME (repeatable), "
+            f"e.g. --object {names[0]} --object {names[1]}")
+    return events
 
 
 def _require_source(args, what: str) -> None:
@@ -182,6 +209,9 @@ def run(args) -> int:
     if args.what == "events" and args.source is not None:  # a command line that does not parse
         args.usage_error(f"`tegrasp plot events` takes no LOG or RESULTS (got "
                          f"{shown(args.source)}); give the events folder as --events DIR")
+    if args.object and args.what != "events":
+        args.usage_error(f"--object picks the objects of `tegrasp plot events`, not of "
+                         f"`tegrasp plot {args.what}`")
     out = output_path(args)
     logger.info(f"plot {args.what}: reading "
                 f"{args.source or args.events or 'the memorized events'}, writing {out}")

@@ -213,9 +213,9 @@ def run_script(main, script: str, argv=None) -> int:
                 return EXIT_ERROR
             raise
         unwritable = output_streams.unwritable_output()
-        if unwritable:
+        if unwritable:  # a script's own failure keeps its exit code (as cli.main's)
             output_streams.tell_cannot_write(*unwritable, program=script)
-            return EXIT_ERROR
+            return code or EXIT_ERROR
         return code
     except BrokenPipeError:
         output_streams.detach_standard_streams()

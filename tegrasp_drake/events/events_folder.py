@@ -343,8 +343,8 @@ def find_memorized_events(folders, object_name: str, *,
                                 "no events", object_name)
     advice = (f"Record them with `{RECORD_COMMAND} ...` (they go to the first folder)."
               if object_name_problem(object_name) is None else remake_advice(object_name))
-    error.args = (f"no memorized events of object '{object_name}' in {'; '.join(looked)}. "
-                  f"{advice}",)
+    error.problem = f"no memorized events of object '{object_name}' in {'; '.join(looked)}"
+    error.args = (f"{error.problem}. {advice}",)
     raise error
 
 

@@ -6,7 +6,9 @@ from collections.abc import Mapping
 
 from tegrasp_drake.events.memorized_event import MemorizedEvent
 from tegrasp_drake.events.transitions import transition_order
-from tegrasp_drake.figures.figure_files import new_figure, save_figure
+from tegrasp_drake.figures.figure_files import MAX_LINES_TOLD_APART, new_figure, save_figure
+
+MAX_OBJECTS_PER_FIGURE = MAX_LINES_TOLD_APART  # one line per object in each panel
 from tegrasp_drake.rig.channels import CHANNEL_NAMES
 
 _COLUMN_TITLES = {"sa_left": "SA left (Eq. 1)", "sa_right": "SA right (Eq. 1)",
@@ -17,7 +19,12 @@ _TRANSITION_TITLES = {"reach_load": "Reach-Load", "load_lift": "Load-Lift",
 
 def plot_memorized_events(events_by_object: Mapping[str, Mapping[str, MemorizedEvent]],
                           path) -> pathlib.Path:
-    """Writes every object's memorized events to `path` (.png, .pdf or .svg); returns it."""
+    """Writes every object's memorized events to `path` (.png, .pdf or .svg); returns it.
+    ValueError for more than MAX_OBJECTS_PER_FIGURE objects (`tegrasp plot events --object`
+    picks some)."""
+    if len(events_by_object) > MAX_OBJECTS_PER_FIGURE:
+        raise ValueError(f"{len(events_by_object)} objects' memorized events; a figure tells "
+                         f"at most {MAX_OBJECTS_PER_FIGURE} apart")
     transitions = sorted({t for events in events_by_object.values() for t in events},
                          key=transition_order)
     if not transitions:

@@ -19,6 +19,12 @@ FIGURE_STARTS = {"png": b"\x89PNG\r\n\x1a\n", "pdf": b"%PDF-",
 PNG_DPI = 150  # about 1800 px across a 12 in figure: sharp on screens and in a PDF viewer
 
 
+# The most lines a panel tells apart: matplotlib's default colour cycle (tab10) has ten
+# colours; more would repeat colours and crowd the legend (and, past a few dozen, collapse
+# the panels of a figure sized for them).
+MAX_LINES_TOLD_APART = 10
+
+
 class FigureFormatError(ValueError):
     """A figure file name whose suffix is not one of FIGURE_FORMATS."""
 

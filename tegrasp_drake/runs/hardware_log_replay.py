@@ -18,6 +18,7 @@ from tegrasp_drake.control.controller_registry import controller_entry
 from tegrasp_drake.control.grasp_controller import event_matcher_config
 from tegrasp_drake.events.event_matcher import EventMatcherConfig, add_event_matcher
 from tegrasp_drake.events.extraction import TactileTrial
+from tegrasp_drake.events.event_file import INDEX_FILE, MemorizedEventError
 from tegrasp_drake.events.events_folder import find_memorized_events
 from tegrasp_drake.events.replay import (EventReplay, live_matcher_config,
                                          channels_trajectory, replay_events_in_sequence)
@@ -25,6 +26,8 @@ from tegrasp_drake.events.streaming_correlation import NO_EVENT
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_name
 from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
 from tegrasp_drake.rig import paths
+from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.files import one_line
 from tegrasp_drake.runs.hardware_log_reader import (RunLog, RunLogError, TactileSegment,
                                                     read_run_log)
 from tegrasp_drake.scenario.scenario import resolve_object, sample_rates_hz, scenario_from_yaml
@@ -203,6 +206,18 @@ def _check_events_felt_on_the_runs_object(scenario, folder, events: dict, path) 
     check_events_object(dataclasses.replace(scenario, object=grasped), folder, events)
 
 
+# What to do when the events folder a run log names cannot be replayed with.
+REPLAY_EVENTS_ADVICE = ("Give --events DIR, a folder holding the object's events, to replay "
+                        "with those")
+
+
+def _recorded_folder_words(path, folder: str) -> str:
+    """How a refusal names the events folder a run's log recorded (never one the user gave)."""
+    return (f"run log '{path}' recorded the events folder its run used, {shown(folder)} "
+            f"({RUN_INFO_CHANNEL} events_dir), which the replay reads when no --events is "
+            "given")
+
+
 def replay_run_log(path, *, object_name: str | None = None,
                    events_dir: str | None = None) -> RunLogReplay:
     """Reads a run's log and re-runs the matcher on it both ways, with the events of
@@ -220,19 +235,28 @@ def replay_run_log(path, *, object_name: str | None = None,
                           "not known: give --object")
     if not object_name:
         raise RunLogError(f"run log '{path}' has no {RUN_INFO_CHANNEL}: give --object")
+    recorded = None  # the events folder the log names, read for want of --events
     if not events_dir and info and info.events_dir:
         # the events the run used; gone, another folder's would be a different replay, so
         # it is refused as a missing --events DIR is (docs/user-guide.md, "events")
+        recorded = _recorded_folder_words(path, info.events_dir)
         if not pathlib.Path(info.events_dir).is_dir():
-            raise RunLogError(
-                f"run log '{path}': the run's events folder '{info.events_dir}' (its "
-                f"{RUN_INFO_CHANNEL} events_dir) is not a folder here: give --events DIR, "
-                "the folder holding the object's events, to replay with those")
+            raise RunLogError(f"{recorded}: it is not a folder here. {REPLAY_EVENTS_ADVICE}")
         events_dir = info.events_dir
-    folder, events = find_memorized_events(paths.events_search_path(events_dir), object_name)
-    check_recorded_runs(folder, events)
-    if log.scenario is not None and object_name == log.scenario.object.name:
-        _check_events_felt_on_the_runs_object(log.scenario, folder, events, path)
+    try:
+        folder, events = find_memorized_events(paths.events_search_path(events_dir),
+                                               object_name)
+        check_recorded_runs(folder, events)
+        if log.scenario is not None and object_name == log.scenario.object.name:
+            _check_events_felt_on_the_runs_object(log.scenario, folder, events, path)
+    except MemorizedEventError as error:
+        if recorded is None:
+            raise
+        at = "" if error.path.name == INDEX_FILE else f"{error.path}: "  # a file: named
+        refused = MemorizedEventError(error.path, error.problem, object_name,
+                                      remedy=REPLAY_EVENTS_ADVICE)
+        refused.args = (one_line(f"{recorded}: {at}{error.problem}. {REPLAY_EVENTS_ADVICE}"),)
+        raise refused from None
     events_dir = str(folder)
     # a scenario_yaml that does not read is damage (RunLog.damage): the defaults are used
     config = matcher_config_of_run(None if log.scenario_problem else info, events,

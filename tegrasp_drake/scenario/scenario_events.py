@@ -98,14 +98,13 @@ def check_events_object(scenario, folder, events: dict, *,
                        if d.split(" ", 1)[0] not in allowed]
         if differences:
             path = folder / event.relative_path()
-            error = MemorizedEventError(path, "object differs", name)
-            error.args = (
-                f"{path}: the memorized events of '{name}' were recorded on another object: "
-                f"{'; '.join(differences)}. Give your object its own name and record its "
-                f"events (`tegrasp record-events` with the same scenario options), or "
-                f"accept the difference with --set controller.event_object_may_differ="
-                f"[{','.join(d.split(' ', 1)[0] for d in differences)}].",)
-            raise error
+            raise MemorizedEventError(
+                path, f"the memorized events of '{name}' were recorded on another object: "
+                f"{'; '.join(differences)}", name,
+                remedy="Give your object its own name and record its events (`tegrasp "
+                "record-events` with the same scenario options), or accept the difference "
+                "with --set controller.event_object_may_differ="
+                f"[{','.join(d.split(' ', 1)[0] for d in differences)}].")
 
 
 @functools.lru_cache(maxsize=16)

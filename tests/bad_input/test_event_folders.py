@@ -295,7 +295,7 @@ def test_an_events_folder_of_other_files_is_refused_for_controllers_without_even
     code, text = run_cli(["sweep", "--objects", "box", "--controllers", controllers,
                           "--attempts", "1", "--dry-run", "--out", str(tmp_path / "sw"),
                           "--events", str(other)], capfd)
-    assert_one_line_error(code, text, f"--events {other}: is not an events folder")
+    assert_one_line_error(code, text, f"--events {other} is not an events folder")
     assert code == 1 and "sweep plan" not in text
     assert not (tmp_path / "sw").exists()
 

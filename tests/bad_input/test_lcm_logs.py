@@ -721,3 +721,24 @@ def test_messages_between_silences_are_kept_and_only_a_corrupt_time_is_skipped(t
     said = [d for d in flipped.damage if "carry a time" in d]
     assert len(said) == 1 and said[0].startswith("1 message(s) on TEGRASP_TACTILE"), said
     assert not [d for d in flipped.damage if "impossible" in d], flipped.damage
+
+
+# Rule: when the events folder a run log recorded (TEGRASP_RUN_INFO events_dir) is there but
+# cannot be replayed with (no events of the object, events felt on another object), the
+# refusal says it is the folder the log recorded (the user gave none), names it, and says to
+# give --events DIR; never a replay-less remedy such as --set.
+@pytest.mark.parametrize("held", ["nothing", "another object's events"])
+def test_the_runs_recorded_events_folder_that_cannot_be_used_is_named_as_the_logs(
+        tmp_path, capfd, held):
+    import dataclasses
+    recorded = tmp_path / "events-of-the-run"
+    recorded.mkdir()
+    if held != "nothing":
+        save_memorized_events(recorded, [dataclasses.replace(
+            event, object_description={**event.object_description, "mass": 0.9})
+            for event in EVENTS.values()])
+    path = _run_log(tmp_path / "run.lcmlog", [_run_info(events_dir=str(recorded))])
+    code, text = _replay([str(path)], capfd)
+    assert_one_line_error(code, text, f"run log '{path}' recorded the events folder its run "
+                          f"used, '{recorded}'", "when no --events is given", "--events DIR")
+    assert "--set" not in text, text

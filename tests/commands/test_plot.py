@@ -77,3 +77,39 @@ def test_avoid_on_a_trial_without_a_hit_names_the_scenario_that_has_one(tmp_path
     assert "no Avoid transition" in str(exit_info.value)
     assert "box_hit_in_hold" in str(exit_info.value)
     assert not (tmp_path / "avoid.png").exists()
+
+
+# Rule: `tegrasp plot events` draws one line per object in each panel, so a figure holds at
+# most MAX_LINES_TOLD_APART objects: a folder with more is refused in one line listing them
+# and saying to pick some with --object NAME, never drawn unreadable (with a matplotlib
+# warning); --object picks the objects plotted.
+def _many_objects_events(folder: pathlib.Path, count: int) -> None:
+    import dataclasses
+
+    from tegrasp_drake.events.events_folder import load_memorized_events, save_memorized_events
+    from tegrasp_drake.rig.paths import package_events_dir
+    box = load_memorized_events(package_events_dir(), "box")
+    for k in range(count):
+        save_memorized_events(folder, [dataclasses.replace(
+            event, object_name=f"obj{k:02d}",
+            scenario=event.scenario.replace("name: box", f"name: obj{k:02d}"))
+            for event in box.values()])
+
+
+def test_plot_events_of_more_objects_than_a_figure_tells_apart_is_refused(tmp_path, capfd):
+    import warnings
+
+    from tegrasp_drake.figures.figure_files import MAX_LINES_TOLD_APART
+    from tests.bad_input.probes import assert_one_line_error, run_cli
+    _many_objects_events(tmp_path / "events", MAX_LINES_TOLD_APART + 1)
+    out = tmp_path / "events.png"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        code, text = run_cli(["plot", "events", "--events", str(tmp_path / "events"),
+                              "--out", str(out)], capfd)
+    assert_one_line_error(code, text, f"memorized events of {MAX_LINES_TOLD_APART + 1} objects",
+                          "obj00", "--object NAME")
+    assert not out.exists()
+    assert main(["plot", "events", "--events", str(tmp_path / "events"), "--out", str(out),
+                 "--object", "obj03", "--object", "obj07"]) == 0
+    assert _is_figure(out)
