@@ -14,6 +14,7 @@ import contextlib
 import errno
 import os
 import sys
+from tegrasp_drake.rig.files import os_error_text
 
 STANDARD_OUTPUT = "standard output"
 STANDARD_ERROR = "standard error"
@@ -132,7 +133,7 @@ def tell_cannot_write(name: str, error: OSError, program: str = "tegrasp") -> No
     if name == STANDARD_OUTPUT:
         detach(sys.stdout)
     try:
-        print(f"{program}: error: cannot write to {name}: {error.strerror or error}",
+        print(f"{program}: error: cannot write to {name}: {os_error_text(error)}",
               file=sys.stderr, flush=True)
     except (OSError, ValueError):
         detach(sys.stderr)
