@@ -15,6 +15,7 @@ import pathlib
 import re
 import signal
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
 from tegrasp_drake.hardware.robotiq.modbus_client import quiet_modbus_library
@@ -164,7 +165,7 @@ def _check_config_target(path) -> None:
             first = head.decode("utf-8", errors="replace").split("\n", 1)[0]
         except OSError as e:
             raise SystemExit(f"{ERROR_LEAD}--write-config {path}: cannot read it "
-                             f"({e.strerror or e}); give another file name") from None
+                             f"({os_error_text(e)}); give another file name") from None
         if first != WRITTEN_BY_EMULATE:
             raise SystemExit(f"{ERROR_LEAD}--write-config {path} exists and was not "
                              "written by `tegrasp emulate` (its first line is not the one "

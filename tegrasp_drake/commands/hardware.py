@@ -12,6 +12,7 @@ import pathlib
 import logging
 import sys
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (result_path_beside_log, staging_file_beside,
@@ -295,7 +296,7 @@ def _run_in_log_folder(args, scenario, config, events, corrective, log, result_p
                              "for that run to end") from None
         except OSError as e:
             raise SystemExit(f"{ERROR_LEAD}--log {shorten(str(log))}: cannot make its "
-                             f"lock file beside it: {e.strerror or e}") from None
+                             f"lock file beside it: {os_error_text(e)}") from None
         return _run_holding_log(args, scenario, config, events, corrective, log,
                                 result_path)
 
@@ -319,7 +320,7 @@ def earlier_run_file_problem(path, *, is_log: bool,
         try:
             head = existing_file_head(path, len(LCM_LOG_START)) or b""
         except OSError as error:
-            return f"cannot be read to check what it is ({error.strerror or error}); {remedy}"
+            return f"cannot be read to check what it is ({os_error_text(error)}); {remedy}"
         if head and head != LCM_LOG_START:
             return f"exists and is not an LCM log (its first bytes are not LCM's); {remedy}"
         beside = result_path_beside_log(path)
@@ -442,7 +443,7 @@ def _run_holding_log(args, scenario, config, events, corrective, log, result_pat
         kept, replaced = keep_incomplete_log(staged, log)
         raise SystemExit(f"{ERROR_LEAD}cannot write the run's result to "
                          f"{shorten(str(target_result))}: "
-                         f"{e.strerror or e}"
+                         f"{os_error_text(e)}"
                          + (f"; its log is in {incomplete_log_words(kept, replaced, log)}"
                             if kept else "") + kept_words)
     logger.info(f"hardware: wrote {f'the log {target} and ' if logged else ''}the result "

@@ -14,6 +14,7 @@ import contextlib
 import errno
 import os
 import sys
+from tegrasp_drake.rig.files import os_error_text
 
 STANDARD_OUTPUT = "standard output"
 STANDARD_ERROR = "standard error"
@@ -142,7 +143,7 @@ def tell_cannot_write(name: str, error: OSError, program: str = "tegrasp") -> No
     if sys.stderr is None:  # closed by the shell (`2>&-`): print() would write on stdout
         return
     try:
-        print(f"{program}: error: cannot write to {name}: {error.strerror or error}",
+        print(f"{program}: error: cannot write to {name}: {os_error_text(error)}",
               file=sys.stderr, flush=True)
     except (OSError, ValueError):
         detach(sys.stderr)

@@ -11,6 +11,7 @@ import argparse
 import contextlib
 import pathlib
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.rig import paths
@@ -162,7 +163,7 @@ def _held_events_folder(out, named: str):
             raise SystemExit(f"{ERROR_LEAD}{named}: another run is recording events "
                              "there now; wait for it to end, or give another folder") from None
         except OSError as e:
-            raise SystemExit(f"{ERROR_LEAD}{named}: cannot open it: {e.strerror or e}; "
+            raise SystemExit(f"{ERROR_LEAD}{named}: cannot open it: {os_error_text(e)}; "
                              "give a folder you can write") from None
         yield
 
@@ -199,7 +200,7 @@ def _record(out, to_record, runs: int, args) -> int:
             raise SystemExit(f"{ERROR_LEAD}{e}") from None
         except OSError as e:
             raise SystemExit(f"{ERROR_LEAD}cannot write the events to {out}: "
-                             f"{e.strerror or e}; nothing of '{object_name}' was "
+                             f"{os_error_text(e)}; nothing of '{object_name}' was "
                              "replaced") from None
         made = ", ".join(events) + (f"; ensemble of {runs} runs" if ensemble else "")
         print(f"{object_name}: {made} -> {len(written)} files in {out}")

@@ -11,6 +11,7 @@ import re
 import shutil
 import tempfile
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.events.event_file import INDEX_FILE
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS, starts_as_figure
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_KEYS, TRIAL_FIGURE_STEMS
@@ -170,7 +171,7 @@ def choose_run_folder(out, *, default, replace_default: bool, overwrite: bool) -
         folder.mkdir(parents=True, exist_ok=True)
     except OSError as e:
         raise RunFolderError(f"--out {folder}: cannot make the folder: "
-                             f"{e.strerror or e}") from None
+                             f"{os_error_text(e)}") from None
     return folder
 
 
@@ -242,7 +243,7 @@ def staged_run(folder):
                     stage = pathlib.Path(tempfile.mkdtemp(prefix=STAGING_PREFIX, dir=folder))
                 except OSError as e:
                     raise RunFolderError(f"--out {folder}: cannot write there: "
-                                         f"{e.strerror or e}") from None
+                                         f"{os_error_text(e)}") from None
             yield stage
         finally:
             if stage is not None:
@@ -285,7 +286,7 @@ def claimed_run_folder(folder):
             raise RunFolderError(f"--out {folder}: {FOLDER_HELD}; wait for it to end, or "
                                  "give another --out") from None
         except OSError as e:
-            raise RunFolderError(f"--out {folder}: cannot open it: {e.strerror or e}") from None
+            raise RunFolderError(f"--out {folder}: cannot open it: {os_error_text(e)}") from None
         yield
 
 
@@ -421,8 +422,9 @@ def foreign_run_file_problem(folder) -> str | None:
         try:
             logged_result = written_trial_log(folder / log_name, any_version=True)[0].get("result")
         except TrialLogError as error:
-            reason = str(error).removeprefix(f"trial log '{folder / log_name}'").lstrip(": ")
-            reason = reason.split("; run the trial again")[0]
+            reason = str(error).removeprefix("trial log ").removeprefix(
+                f"'{folder / log_name}'").lstrip(": ")
+            reason = reason.split("; run the trial again")[0].split("; give the trial.npz")[0]
             return refusal(log_name, f"is not a trial log a run wrote ({reason})")
     if not own(folder / RESULT_FILE):
         return None

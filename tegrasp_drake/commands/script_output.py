@@ -7,6 +7,7 @@ import pathlib
 import signal
 import sys
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import EXIT_ERROR, EXIT_USAGE, internal_error
 from tegrasp_drake.figures.figure_files import (FigureFormatError, check_figure_path,
                                                 figure_replace_problem)
@@ -377,7 +378,7 @@ def rows_replace_problem(path, keys: tuple[str, ...]) -> str | None:
     except (FileNotFoundError, NotADirectoryError, IsADirectoryError):
         return None  # nothing there, or a folder (output_file_problem says so)
     except OSError as error:  # InputTooLargeError too: no list of rows is that long
-        return (f"cannot be read to check what it is ({error.strerror or error}); give another "
+        return (f"cannot be read to check what it is ({os_error_text(error)}); give another "
                 "file name")
     try:
         data = json.loads(raw)

@@ -8,6 +8,7 @@ import contextlib
 import json
 import sys
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (REPLAY_KEY, RunFolderError, commit_run,
@@ -138,7 +139,7 @@ def run(args) -> int:
                         replay_html = str(write_replay_html(meshcat, html))
                     except OSError as e:
                         html_error = (f"{ERROR_LEAD}--html {html}: cannot write it "
-                                      f"({e.strerror or e}); the run is kept in {out}")
+                                      f"({os_error_text(e)}); the run is kept in {out}")
                 try:
                     result = dict(trial.to_dict(), log=str(trial.log.save(stage / "trial.npz")),
                                   **write_trial_figures(trial.log, stage, args.format))
@@ -146,7 +147,7 @@ def run(args) -> int:
                         result[REPLAY_KEY] = replay_html
                     result = commit_run(stage, out, result)
                 except OSError as e:
-                    raise RunFolderError(f"cannot write the run to {out}: {e.strerror or e}; "
+                    raise RunFolderError(f"cannot write the run to {out}: {os_error_text(e)}; "
                                          "an earlier run there is kept whole") from None
         except (RunFolderError, SimulationFailedError) as e:
             raise SystemExit(f"{ERROR_LEAD}{e}") from None

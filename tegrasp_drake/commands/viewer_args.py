@@ -5,6 +5,7 @@ the run's recording as one standalone HTML file (Meshcat.StaticHtml: no server, 
 import pathlib
 import sys
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.rig.files import existing_file_head, output_file_problem, write_atomically
 
@@ -42,7 +43,7 @@ def _replacing_problem(path: pathlib.Path, args) -> str | None:
     try:  # the head only: a huge file is no page of ours, and is not read
         head = existing_file_head(path, 1024) or b""
     except OSError as e:
-        return f"cannot be read to check what it is ({e.strerror or e}); give another file name"
+        return f"cannot be read to check what it is ({os_error_text(e)}); give another file name"
     if not (head.startswith(HTML_START) and REPLAY_TITLE in head):
         return ("exists and is not a replay page (no Meshcat page head in its first kB); "
                 "give another file name, or remove it yourself")

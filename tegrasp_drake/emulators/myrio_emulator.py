@@ -20,15 +20,20 @@ import zlib
 
 import numpy as np
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
 from tegrasp_drake.rig.files import is_read_failure, one_line, read_error_remedy
-from tegrasp_drake.rig.npz_headers import MAX_TRIAL_LOG_BYTES, checked_npz_arrays
+from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, DamagedNpzError,
+                                           DeclaredArraysError, NotAnNpzError,
+                                           NpzHeaderError, checked_npz_arrays)
 from tegrasp_drake.hardware.myrio.tactile_calibration import (
     TactileCalibration, counts_from_forces, piezo_from_acceleration)
 from tegrasp_drake.hardware.myrio.tactile_frame import encode_frame
 from tegrasp_drake.scenario.trial_log_file import (ARRAY_FIELDS, TrialLogError,
                                                    check_trial_log_file,
-                                                   load_trial_log, trial_arrays_problem)
+                                                   declared_arrays_problem,
+                                                   holds_this_versions_metadata, load_trial_log,
+                                                   trial_arrays_problem, trial_log_npz_refusal)
 from tegrasp_drake.emulators.null_modem import open_raw_pty
 
 MAX_SENT_RECORDS = 200_000  # `sent()` keeps the newest frames only (200 s at 1 kHz)
@@ -80,10 +85,17 @@ def load_tactile_recording(path, *, bare: bool = True) -> TactileRecording:
     try:
         arrays = checked_npz_arrays(path, wanted, optional=(
             "meta", "channels", "t_slow", "gripper_command"), max_bytes=MAX_TRIAL_LOG_BYTES,
-            text=("meta",), known=("meta", *ARRAY_FIELDS), kind="a trial log")
+            text=("meta",), known=("meta", *ARRAY_FIELDS), kind="a trial log",
+            declared_problem=declared_arrays_problem)
+    except NpzHeaderError as e:
+        if isinstance(e, (NotAnNpzError, DamagedNpzError, DeclaredArraysError)) or (
+                "lacks the arrays" in str(e) and holds_this_versions_metadata(path)):
+            raise TactileRecordingError(trial_log_npz_refusal(path, e)) from None
+        raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
+                                    f"and pad_acceleration: {e}") from None
     except (OSError, KeyError, ValueError, EOFError, zipfile.BadZipFile, zlib.error) as e:
         if is_read_failure(e):  # the disk's error, not the file's: no word of damage
-            raise TactileRecordingError(f"'{path}' cannot be read ({e.strerror or e}); "
+            raise TactileRecordingError(f"'{path}' cannot be read ({os_error_text(e)}); "
                                         f"{read_error_remedy(e)}") from None
         raise TactileRecordingError(f"'{path}' is not a trial log with t_sa, taxels, t_ra "
                                     f"and pad_acceleration (or it is truncated or corrupt): "

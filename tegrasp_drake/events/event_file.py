@@ -15,6 +15,7 @@ import pathlib
 
 import numpy as np
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.channels import CHANNEL_NAMES, RA_CHANNELS
 from tegrasp_drake.rig.files import (JsonFileError, NotAFileError, error_line, load_json,
                                      one_line, read_bounded, read_error_remedy,
@@ -413,7 +414,7 @@ def recorded_file_problem(path, expected_format: str) -> str | None:
     except NotAFileError as error:
         return error.strerror.split(";")[0]
     except OSError as error:  # too large, unreadable
-        return f"cannot be checked ({error.strerror or error})"
+        return f"cannot be checked ({os_error_text(error)})"
     text = raw.decode("utf-8", errors="replace")
     try:
         data = load_json(text)

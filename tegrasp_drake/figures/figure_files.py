@@ -5,6 +5,7 @@ and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib
 import os
 import pathlib
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.files import (UserPathError, existing_file_head, existing_output_head,
                                      temporary_sibling, write_error_remedy)
 
@@ -116,7 +117,7 @@ def save_figure(figure, path, *, dpi: float = PNG_DPI, tight: bool = False) -> p
             figure.savefig(temporary, format=figure_format, dpi=dpi, metadata=_metadata(path),
                            bbox_inches="tight" if tight else None)
     except OSError as error:
-        raise UserPathError(f"cannot write the figure {path}: {error.strerror or error}; "
+        raise UserPathError(f"cannot write the figure {path}: {os_error_text(error)}; "
                             f"{write_error_remedy(error)}", error) from None
     return path
 

@@ -17,6 +17,7 @@ import typing
 
 from pydrake.common.yaml import yaml_dump_typed
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.hardware.realtime import SCHEDULING_POLICIES
 from tegrasp_drake.hardware.serial_urls import (is_serial_url, named_paths,
                                                  serial_url_problem, wrapped_device)
@@ -538,7 +539,7 @@ def serial_port_problem(port: str) -> str | None:
     except FileNotFoundError:
         return None
     except OSError as error:
-        return f"cannot be used ({error.strerror or error})"
+        return f"cannot be used ({os_error_text(error)})"
     if stat.S_ISDIR(mode.st_mode):
         return "is a folder, not a serial device"
     if stat.S_ISREG(mode.st_mode):

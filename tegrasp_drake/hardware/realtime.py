@@ -5,6 +5,7 @@ loop on a busy host"."""
 
 import contextlib
 import os
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.echo import shown
 
 SCHEDULING_POLICIES = ("fifo", "nice", "normal")
@@ -29,14 +30,14 @@ def raise_scheduling(policy: str = "fifo", priority: int = 10, pid: int = 0) -> 
             _set_fifo(priority, pid)
             return f"real-time scheduling (SCHED_FIFO, priority {priority})"
         except (PermissionError, OSError) as e:
-            refused.append(f"SCHED_FIFO refused: {e.strerror or e}")
+            refused.append(f"SCHED_FIFO refused: {os_error_text(e)}")
             policy = "nice"
     if policy == "nice":
         try:
             os.setpriority(os.PRIO_PROCESS, pid, NICE_LEVEL)
             got = f"raised priority (nice {NICE_LEVEL})"
         except (PermissionError, OSError) as e:
-            refused.append(f"nice {NICE_LEVEL} refused: {e.strerror or e}")
+            refused.append(f"nice {NICE_LEVEL} refused: {os_error_text(e)}")
     return got + (f" ({'; '.join(refused)})" if refused else "")
 
 

@@ -17,6 +17,7 @@ import stat
 import typing
 import urllib.parse
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.echo import shorten, shown
 
 
@@ -217,7 +218,7 @@ def spy_file_problem(path: str) -> str | None:
             return f"is in {shown(folder)}, which is not a folder"
         return None
     except OSError as error:
-        return f"cannot be used ({error.strerror or error})"
+        return f"cannot be used ({os_error_text(error)})"
     if stat.S_ISCHR(mode):
         return None
     if stat.S_ISDIR(mode):
@@ -229,7 +230,7 @@ def spy_file_problem(path: str) -> str | None:
         with open(path, "rb") as file:
             start = file.read(64)
     except OSError as error:
-        return f"{shown(path)} cannot be read ({error.strerror or error})"
+        return f"{shown(path)} cannot be read ({os_error_text(error)})"
     if start and not _SPY_LOG_LINE.match(start):
         return (f"{shown(path)} is a file that is not an earlier spy log: pyserial would "
                 "empty it; give a new file's path, or move that file away")

@@ -18,6 +18,7 @@ import threading
 import types
 import typing
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.echo import given, shown
 from tegrasp_drake.rig.ranges import check_ranges, number_problem, python_scalar
 
@@ -55,7 +56,7 @@ class Folder:
         except (FileNotFoundError, NotADirectoryError):
             there = False
         except OSError as e:  # a name too long, a symlink loop
-            return f"cannot be used ({e.strerror or e})"
+            return f"cannot be used ({os_error_text(e)})"
         if not there:
             if self.exists:
                 return "does not exist; give an existing folder"

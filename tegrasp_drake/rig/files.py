@@ -191,27 +191,46 @@ def write_atomically(path, data: str | bytes, *, start: bytes) -> pathlib.Path:
     except UserPathError:
         raise
     except OSError as error:
-        raise UserPathError(f"cannot write {path}: {error.strerror or error}; "
+        raise UserPathError(f"cannot write {path}: {os_error_text(error)}; "
                             f"{write_error_remedy(error)}", error) from None
     return pathlib.Path(path)
 
 
+def os_error_text(error: BaseException) -> str:
+    """The words of an OSError on a file, after the path it names: the system's (strerror),
+    but a symbolic-link loop (ELOOP: links that lead back to each other, which no disk or
+    permission explains) said as one; the error's text when it carries no errno."""
+    if getattr(error, "errno", None) == errno.ELOOP:
+        return "it is a symbolic-link loop: links that lead back to each other, never to a file"
+    return getattr(error, "strerror", None) or str(error)
+
+
+# What to do about a symbolic-link loop, read or written: the link is the problem, not the disk.
+_LINK_LOOP_REMEDY = "fix or remove the symbolic link, or give the file's own path"
+
+
 def write_error_remedy(error: OSError) -> str:
     """What to do about a write that failed with `error`, in the words every writer's error
-    line ends with: room for a full disk or quota (ENOSPC, EDQUOT), another folder otherwise
-    (no permission, a read-only disk, ...), where space would not help."""
+    line ends with: room for a full disk or quota (ENOSPC, EDQUOT), the link for a
+    symbolic-link loop (ELOOP), another folder otherwise (no permission, a read-only disk,
+    ...), where space would not help."""
     if error.errno in (errno.ENOSPC, errno.EDQUOT):
         return "free some space or write it to another disk"
+    if error.errno == errno.ELOOP:
+        return _LINK_LOOP_REMEDY
     return "give a folder you can write"
 
 
 def read_error_remedy(error: OSError) -> str:
     """What to do about a read that failed with `error`, in the words a reader's error line
-    ends with: its owner's permission for a file this user may not read (EACCES, EPERM); else
-    (EIO: a failing disk, a network file system gone) the system could not read it, which
-    says nothing of its content: never a damaged file, never one to remake."""
+    ends with: its owner's permission for a file this user may not read (EACCES, EPERM); the
+    link for a symbolic-link loop (ELOOP); else (EIO: a failing disk, a network file system
+    gone) the system could not read it, which says nothing of its content: never a damaged
+    file, never one to remake."""
     if error.errno in (errno.EACCES, errno.EPERM):
         return "ask its owner to make it readable, or give a file you can read"
+    if error.errno == errno.ELOOP:
+        return _LINK_LOOP_REMEDY
     return ("the system could not read it, which says nothing of its content; read it again "
             "once the disk or file system answers, or give a copy")
 
@@ -277,8 +296,12 @@ def _nearest_existing_part(path) -> tuple[pathlib.Path | None, OSError | None]:
     path = pathlib.Path(path)
     for place in (path, *path.parents):
         try:
-            if place.exists() or place.is_symlink():
+            if place.exists():
                 return place, None
+            if place.is_symlink():  # a dangling link, or a loop (exists() says False to both)
+                os.stat(place)
+        except FileNotFoundError:
+            return place, None
         except OSError as e:
             return place, e
     return None, None
@@ -344,7 +367,7 @@ def folder_problem(path) -> str | None:
         return problem
     place, error = _nearest_existing_part(path)
     if error:
-        return f"{place}: {error.strerror or error}"
+        return f"{place}: {os_error_text(error)}"
     if place is None:
         return None
     if not place.is_dir():
@@ -357,12 +380,12 @@ def folder_problem(path) -> str | None:
         os.rmdir(tempfile.mkdtemp(prefix=".tegrasp-probe-", dir=place))
     except OSError as e:
         return (f"{place} cannot be written in: making a folder there failed "
-                f"({e.strerror or e})")
+                f"({os_error_text(e)})")
     return None
 
 
 def _unreadable_folder_error(folder, error: OSError) -> "UserPathError":
-    return UserPathError(f"{folder} cannot be read ({error.strerror or error}); ask its owner "
+    return UserPathError(f"{folder} cannot be read ({os_error_text(error)}); ask its owner "
                          "to make it readable, or give a folder you can read", error)
 
 
@@ -412,7 +435,7 @@ def free_space_problem(path, needed_bytes: int, for_what: str) -> str | None:
     try:
         free = free_bytes(path)
     except OSError as e:
-        return f"cannot be checked for free space: {e.strerror or e}"
+        return f"cannot be checked for free space: {os_error_text(e)}"
     if free < needed_bytes:
         return (f"is on a disk with {free // 1000} kB free; the run needs at least "
                 f"{round(needed_bytes / 1e6, 1):g} MB for {for_what}: free some space or "
@@ -430,14 +453,14 @@ def replace_problem(path) -> str | None:
     except (FileNotFoundError, NotADirectoryError):  # the latter: a file on its folder path
         mode = None
     except OSError as e:
-        return f"cannot be used ({e.strerror or e})"
+        return f"cannot be used ({os_error_text(e)})"
     if mode is not None and stat.S_ISDIR(mode):
         return "is a folder where a file belongs (no file can replace a folder); move it away"
     blocked = non_folder_on_path(path.parent)
     if blocked:
         place, error = blocked
         if error:
-            return f"cannot be used ({place}: {error.strerror or error})"
+            return f"cannot be used ({place}: {os_error_text(error)})"
         return f"cannot be written: {place} is not a folder"
     return None
 
@@ -456,7 +479,7 @@ def output_file_problem(path) -> str | None:
     except (FileNotFoundError, NotADirectoryError):
         mode = None
     except OSError as e:
-        return f"cannot be used ({e.strerror or e})"
+        return f"cannot be used ({os_error_text(e)})"
     if mode is not None and not stat.S_ISREG(mode):
         if stat.S_ISDIR(mode):
             return "is a folder where a file belongs; give a file name"
@@ -669,7 +692,7 @@ def file_problem(path) -> str | None:
     except FileNotFoundError:
         return "does not exist"
     except OSError as e:
-        return f"cannot be read: {e.strerror or e}"
+        return f"cannot be read: {os_error_text(e)}"
     return _kind_problem(mode)
 
 
@@ -717,7 +740,7 @@ def existing_output_head(path, size: int, belongs: str) -> tuple[bytes | None, s
         kind = error.strerror.split(",")[0]  # "is a folder", "is a named pipe (FIFO)", ...
         return None, f"{kind} where {belongs}"
     except OSError as error:
-        return None, (f"cannot be read to check what it is ({error.strerror or error}); give "
+        return None, (f"cannot be read to check what it is ({os_error_text(error)}); give "
                       "another file name")
 
 
@@ -978,7 +1001,7 @@ def read_json_file(path, *, limit: int, kind: str, check=None, encoding: str = "
     except NotAFileError as error:  # which kind of file it is, without "give a file"
         problem = error.strerror.split(";")[0]
     except OSError as error:
-        raise JsonFileError(path, f"cannot be read ({error.strerror or error})", remedy,
+        raise JsonFileError(path, f"cannot be read ({os_error_text(error)})", remedy,
                             unreadable=error) from None
     except UnicodeDecodeError as error:
         problem = f"is not {encoding.upper()} text (byte {error.start})"

@@ -27,6 +27,21 @@ class NpzHeaderError(ValueError):
     """An .npz file's arrays are not what its reader accepts; the message says which."""
 
 
+class NotAnNpzError(NpzHeaderError):
+    """The file is no .npz at all: it does not start as a zip archive (an .npy, raw bytes, a
+    zip behind other bytes); the message says what it starts with."""
+
+
+class DamagedNpzError(NpzHeaderError):
+    """The file starts as an .npz but is incomplete or damaged: cut short (no zip directory at
+    its end), or a member's bytes differ from what its CRC-32 says was written."""
+
+
+class DeclaredArraysError(NpzHeaderError):
+    """The arrays an .npz's headers declare are not what its reader accepts (the reader's own
+    check: their shapes, dtypes, rows); the message is the check's, in the reader's words."""
+
+
 # dtype kinds a numeric log or its JSON metadata may hold: bool, integers, floats, text.
 _ALLOWED_KINDS = frozenset("biufU")
 # A plain array's .npy header is a few hundred bytes (64-byte multiples).
@@ -149,7 +164,7 @@ def _read_npy_header(member, name: str) -> tuple[tuple, np.dtype]:
 
 def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
                        max_text_chars: int | None = None, known=None,
-                       kind="an .npz") -> dict[str, np.ndarray]:
+                       kind="an .npz", declared_problem=None) -> dict[str, np.ndarray]:
     """The arrays `names` (and `optional` ones present) of the .npz at `path`, once their
     headers fit `max_bytes` and hold numbers (text for `text`, each at most `max_text_chars`
     characters when given; numpy stores 4 bytes a character), and (when `known`, the array
@@ -157,10 +172,23 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
     `kind` (what the file is meant to be), before a byte is read when `path` is not a regular
     file (a FIFO or /dev/zero never ends). The system's error reading the file (EIO, EACCES:
     files.is_read_failure) is raised as that OSError, never as an NpzHeaderError: a file
-    that could not be read is not a damaged one."""
+    that could not be read is not a damaged one. `declared_problem`, given {name: (shape,
+    dtype)} of every array the headers declare, says what is wrong with them (words, or None)
+    before any array is decompressed: DeclaredArraysError. A file that does not start as a zip
+    archive is NotAnNpzError (np.load would unpickle it, or read it as an .npy), one cut short
+    or whose bytes fail their CRC-32 DamagedNpzError."""
     if not stat.S_ISREG(os.stat(path).st_mode):
         raise NpzHeaderError("it is not a regular file (a folder, named pipe or device); "
                              "give the trial.npz file")
+    with open(path, "rb") as file:
+        start = file.read(len(NPZ_START))
+    if not start:
+        raise DamagedNpzError("it is empty (0 bytes)")
+    if start != NPZ_START:
+        what = ("an .npy array's magic" if start.startswith(b"\x93NUM")
+                else f"the bytes {start.hex(' ')}")
+        raise NotAnNpzError(f"it starts with {what}, not a zip archive's "
+                            f"({NPZ_START.hex(' ')})")
     directory = central_directory_bytes(path)
     if directory is not None and directory > MAX_CENTRAL_DIRECTORY_BYTES:
         raise NpzHeaderError(f"its zip directory declares {directory} bytes of members, more "
@@ -170,11 +198,17 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
         zip_file = zipfile.ZipFile(path)
     except (RuntimeError, NotImplementedError) as e:  # a zip feature zipfile does not read
         raise NpzHeaderError(f"it cannot be read as a zip archive: {e}") from None
+    except zipfile.BadZipFile:  # it starts as one: its end is missing or damaged
+        raise DamagedNpzError("it starts as a zip archive but has no zip directory at its "
+                              "end: it was cut short (a copy or download that stopped) or "
+                              "damaged") from None
     with zip_file:
         try:
             headers = npz_array_headers(zip_file)
         except (RuntimeError, NotImplementedError) as e:  # encrypted, unknown compression
             raise NpzHeaderError(f"a member cannot be read: {e}") from None
+        except (zipfile.BadZipFile, zlib.error, EOFError) as e:
+            raise DamagedNpzError(_damage_words(e)) from None
         if known is not None:
             unknown = [name for name in headers if name not in known]
             if unknown:
@@ -197,11 +231,26 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
         if total > max_bytes:
             raise NpzHeaderError(f"its arrays declare {total} bytes, more than the "
                                  f"{max_bytes} this reads")
+        if declared_problem is not None:
+            problem = declared_problem({name: header[:2] for name, header in headers.items()})
+            if problem:
+                raise DeclaredArraysError(problem)
         try:
             with np.load(path, allow_pickle=False) as data:
                 return {name: _member_array(data, name) for name in wanted}
         except (RuntimeError, NotImplementedError) as e:
             raise NpzHeaderError(f"a member cannot be read: {e}") from None
+        except (zipfile.BadZipFile, zlib.error) as e:
+            raise DamagedNpzError(_damage_words(e)) from None
+
+
+def _damage_words(error: BaseException) -> str:
+    """What zipfile's or zlib's `error` on a member's bytes says of the file, in words."""
+    text = str(error)
+    if text.startswith("Bad CRC-32"):
+        return (f"a member's bytes differ from those written ({text.removeprefix('Bad ')} "
+                "check fails)")
+    return f"a member's compressed bytes are damaged ({type(error).__name__}: {text})"
 
 
 def _member_array(data, name: str) -> np.ndarray:
@@ -209,6 +258,9 @@ def _member_array(data, name: str) -> np.ndarray:
     advises allow_pickle=True) said in the package's words."""
     try:
         return data[name]
-    except (ValueError, EOFError):
+    except EOFError:
+        raise DamagedNpzError(f"'{name}' ends before the array its .npy header "
+                              "declares") from None
+    except ValueError:
         raise NpzHeaderError(f"'{name}' cannot be read as the array its .npy header "
                              "declares") from None

@@ -16,6 +16,7 @@ import pathlib
 
 from pydrake.multibody.parsing import Parser
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.echo import shown
 
 PACKAGE_NAME = "tegrasp"  # models are reachable as package://tegrasp/...
@@ -110,7 +111,7 @@ def _check_folder_path(folder: pathlib.Path, named: str, meant: str) -> None:
         return
     place, error = blocked
     if error:
-        raise UserPathError(f"{named} cannot be used ({error.strerror or error}); point it at "
+        raise UserPathError(f"{named} cannot be used ({os_error_text(error)}); point it at "
                             f"{meant}, or unset it")
     what = ("is not a folder" if place == folder
             else f"passes through {place}, which is not a folder")

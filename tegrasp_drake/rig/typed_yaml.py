@@ -23,6 +23,7 @@ import typing
 
 import yaml
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.core_schema_yaml import (CORE_FLOAT, FLOAT_TAG, INT_TAG, compose,
                                                 construct, yaml11_only_boolean,
                                                 yaml11_only_number)
@@ -113,7 +114,7 @@ def read_yaml_text(path: str | pathlib.Path, what: str) -> str:
         raise ConfigError(f"{path}: cannot read {what}: it is not UTF-8 text (byte "
                           f"{e.start}); give a YAML file") from None
     except OSError as e:
-        raise UnreadableFileError(f"{path}: cannot read {what}: {e.strerror or e}; "
+        raise UnreadableFileError(f"{path}: cannot read {what}: {os_error_text(e)}; "
                                   f"{read_error_remedy(e)}") from None
     return text
 
@@ -587,6 +588,44 @@ def keys_overlap(a: str, b: str) -> bool:
     other: an assignment to either changes what the other sets (`gripper={pad_friction: 1}`
     sets gripper.pad_friction)."""
     return a == b or a.startswith(b + ".") or b.startswith(a + ".")
+
+
+def unknown_field_problem(assignment: str, schema) -> str | None:
+    """Why `assignment` (`key=value`) sets no field of the dataclass `schema`, in words, or
+    None: a part of its dotted key that is no field of the section it names, or (a value that
+    is a YAML mapping for a section) a key of the mapping that is none; each with the
+    section's nearest field names and all of them. A section that is no dataclass (a Drake
+    config class, a tagged union) is its loader's to check: None."""
+    key = assignment_key(assignment)
+    section, where = schema, []
+    for part in key.split("."):
+        if not dataclasses.is_dataclass(section):
+            return None
+        names = [field.name for field in dataclasses.fields(section)]
+        if part not in names:
+            return _not_a_field_words(".".join([*where, part]), where, part, names)
+        section = typing.get_type_hints(section)[part]
+        where.append(part)
+    if not dataclasses.is_dataclass(section) or "=" not in assignment:
+        return None
+    try:
+        value = yaml.safe_load(assignment.split("=", 1)[1])
+    except yaml.YAMLError:
+        return None  # apply_override's to tell
+    names = [field.name for field in dataclasses.fields(section)]
+    for sub in value if isinstance(value, dict) else ():
+        if str(sub) not in names:
+            return _not_a_field_words(f"{key}.{sub}", where, str(sub), names)
+    return None
+
+
+def _not_a_field_words(key: str, where: list, part: str, names: list) -> str:
+    import difflib
+    section = f"the {'.'.join(where)} section" if where else "the top level"
+    close = difflib.get_close_matches(part, names, n=3, cutoff=0.5)
+    nearest = f"nearest: {', '.join(close)}; " if close else ""
+    return (f"'{shorten(key)}' is not a field of {section} ({nearest}its fields: "
+            f"{', '.join(sorted(names))})")
 
 
 def apply_override(data: dict, assignment: str, option: str = "--set",

@@ -13,6 +13,7 @@ import struct
 import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 from tegrasp_drake.control.grasp_modes import WORDS, Mode, Transition, words_problem
 from tegrasp_drake.rig.objects import object_name_problem
@@ -915,7 +916,7 @@ def read_run_log(path) -> RunLog:
     except InputTooLargeError:  # from the file's size, before a byte is read
         raise RunLogError(too_large_run_log_problem(path)) from None
     except OSError as e:
-        raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
+        raise RunLogError(f"run log '{path}' cannot be read: {os_error_text(e)}") from None
     with stream:
         data = FileWindow(stream, size)
         scan = LcmEventScan(data)
@@ -938,7 +939,7 @@ def read_run_log(path) -> RunLog:
             damage = scan.damage
             not_a_log = None if counts else _not_lcm_log_problem(data)
         except OSError as e:
-            raise RunLogError(f"run log '{path}' cannot be read: {e.strerror or e}") from None
+            raise RunLogError(f"run log '{path}' cannot be read: {os_error_text(e)}") from None
     if not_a_log:
         raise RunLogError(f"run log '{path}' {not_a_log}; give a log written by `tegrasp "
                           "hardware --log FILE` or lcm-logger")

@@ -24,6 +24,7 @@ import lcm
 from pydrake.systems.framework import EventStatus
 from pydrake.lcm import DrakeLcm
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.lcm_time import utime_from_time
@@ -116,7 +117,7 @@ class BusLogWriter:
         try:
             free = free_bytes(self.path.parent)
         except OSError as e:
-            return f"the LCM log {self.path} stopped: {e.strerror or e}"
+            return f"the LCM log {self.path} stopped: {os_error_text(e)}"
         if free < LOG_MIN_FREE_BYTES:
             return (f"the LCM log {self.path} stopped: the disk holding it has less than "
                     f"{LOG_MIN_FREE_BYTES // 10**6} MB free")

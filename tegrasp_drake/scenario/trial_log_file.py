@@ -23,6 +23,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.files import (DuplicateKeyError, JsonValueError, file_problem, load_json,
                                      is_read_failure, read_error_remedy,
                                      one_line, temporary_sibling)
@@ -32,7 +33,8 @@ from tegrasp_drake.rig.station_interface import PAD_ACCELERATION_AXES
 from tegrasp_drake.rig.number_text import distinct_number_texts, number_text
 from tegrasp_drake.rig.ranges import is_integer
 from tegrasp_drake.rig.echo import shorten
-from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NPZ_START, NpzHeaderError,
+from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, NPZ_START, DamagedNpzError,
+                                           DeclaredArraysError, NotAnNpzError, NpzHeaderError,
                                            checked_npz_arrays)
 from tegrasp_drake.rig.api_boundary import PathLike, public_api, public_dataclass
 from tegrasp_drake.robotiq import units as ru
@@ -209,7 +211,7 @@ def written_trial_log(path: pathlib.Path, *,
     except OSError as e:
         if not is_read_failure(e):
             raise
-        raise TrialLogError(f"trial log '{path}' cannot be read ({e.strerror or e}); "
+        raise TrialLogError(f"trial log '{path}' cannot be read ({os_error_text(e)}); "
                             f"{read_error_remedy(e)}") from None
 
 
@@ -220,17 +222,14 @@ def _checked_trial_log(path: pathlib.Path, any_version: bool) -> tuple[dict, dic
         arrays = checked_npz_arrays(path, ("meta", *ARRAY_FIELDS),
                                     max_bytes=MAX_TRIAL_LOG_BYTES, text=("meta",),
                                     max_text_chars=MAX_META_CHARS,
-                                    known=("meta", *ARRAY_FIELDS), kind="a trial log")
+                                    known=("meta", *ARRAY_FIELDS), kind="a trial log",
+                                    declared_problem=declared_arrays_problem)
         meta = load_json(str(arrays.pop("meta")))
     except (DuplicateKeyError, JsonValueError) as e:  # JSON that parses, but is no metadata
         raise TrialLogError(f"trial log '{path}': its metadata {e}; run the trial again to "
                             "remake it") from None
     except NpzHeaderError as e:
-        if "lacks the arrays" in str(e):
-            raise TrialLogError(f"trial log '{path}' {e}; it is not a trial log (`tegrasp "
-                                "trial --out DIR` writes one)") from None
-        raise TrialLogError(f"trial log '{path}' is truncated or corrupt ({e}); run the trial "
-                            "again to remake it") from None
+        raise TrialLogError(trial_log_npz_refusal(path, e)) from None
     except RecursionError:
         raise TrialLogError(f"trial log '{path}': its metadata nests too deeply; it is not "
                             "a trial log") from None
@@ -262,6 +261,47 @@ def _checked_trial_log(path: pathlib.Path, any_version: bool) -> tuple[dict, dic
     if problem:
         raise TrialLogError(f"trial log '{path}' {problem}; run the trial again to remake it")
     return meta, arrays
+
+
+def trial_log_npz_refusal(path, error: NpzHeaderError) -> str:
+    """The refusal of the trial log at `path` whose file checked_npz_arrays refused with
+    `error`, in one line naming it: no .npz at all (NotAnNpzError: not a trial log), one cut
+    short or damaged (DamagedNpzError, or a log of this package's that lacks arrays:
+    incomplete, not an earlier version's, whose format version its metadata would give), arrays
+    whose headers declare what no trial log holds (DeclaredArraysError), else truncated or
+    corrupt. What every reader of a trial log's file says (load_trial_log, the myRIO
+    emulator's load_tactile_recording)."""
+    remake = "run the trial again to remake it"
+    if isinstance(error, NotAnNpzError):
+        return (f"'{path}' is not a trial log (an .npz zip archive written by tegrasp): "
+                f"{error}; give the trial.npz that `tegrasp trial --out DIR` writes")
+    if isinstance(error, DamagedNpzError):
+        return (f"trial log '{path}' is incomplete or damaged, not one an earlier version "
+                f"wrote: {error}; {remake}")
+    if isinstance(error, DeclaredArraysError):
+        return f"trial log '{path}': {error} (from its .npy headers); {remake}"
+    if "lacks the arrays" in str(error):
+        if holds_this_versions_metadata(path):
+            return (f"trial log '{path}' is incomplete, not one an earlier version wrote: it "
+                    f"{error}, which every log of its format version {FORMAT_VERSION} holds; "
+                    f"{remake}")
+        return (f"trial log '{path}' {error}; it is not a trial log (`tegrasp trial --out "
+                "DIR` writes one)")
+    return f"trial log '{path}' is truncated or corrupt ({error}); {remake}"
+
+
+def holds_this_versions_metadata(path) -> bool:
+    """Whether the .npz at `path` holds a trial log's metadata of this format version with a
+    checksum: what this package's TrialLog.save wrote, whatever else it lacks."""
+    try:
+        text = checked_npz_arrays(path, ("meta",), max_bytes=4 * MAX_META_CHARS,
+                                  text=("meta",), max_text_chars=MAX_META_CHARS)["meta"]
+        meta = load_json(str(text))
+    except (OSError, ValueError, KeyError, EOFError, zipfile.BadZipFile, zlib.error,
+            RecursionError):
+        return False
+    return (isinstance(meta, dict) and meta.get("format_version") == FORMAT_VERSION
+            and CHECKSUM_FIELD in meta)
 
 
 def trial_log_problem(meta: dict, arrays: dict, *, rejudge: bool = True) -> str | None:
@@ -765,15 +805,14 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
     for the sensors of `scenario`, the log's Scenario, or of any scenario when None), the
     channels Eq. 1-2 of the taxels and pad accelerations (logged_channels_problem). Every
     reader applies it."""
-    problem = array_types_problem(arrays)
+    problem = array_types_problem(arrays) or declared_arrays_problem(
+        {name: (np.shape(array), np.asarray(array).dtype) for name, array in arrays.items()})
     if problem:
         return problem
     for time_name, columns in _TIME_BASES.items():
         if time_name not in arrays:
             continue
         times = arrays[time_name]
-        if times.ndim != 1 or len(times) < 2:
-            return f"'{time_name}' holds {times.size} time(s); a trial needs at least two"
         if not np.all(np.isfinite(times)) or np.any(np.diff(times) <= 0):
             return f"'{time_name}' is not a finite, increasing list of times"
         steps = np.diff(times)
@@ -783,19 +822,36 @@ def trial_arrays_problem(arrays: dict, scenario=None) -> str | None:
             return (f"'{time_name}' is not sampled at one period: its step from sample {off} "
                     f"to {off + 1} is {number_text(float(steps[off]))} s, its others "
                     f"{number_text(period)} s")
-        for name, width in columns.items():
-            if name not in arrays:
-                continue
-            array = arrays[name]
-            expected = (len(times),) if width is None else (len(times), width)
-            if array.shape != expected:
-                return (f"'{name}' has shape {array.shape}, but {len(times)} samples of "
-                        f"'{time_name}' need {expected}")
     return (time_bases_problem(arrays, scenario)
             or nonfinite_signals(arrays) or out_of_range_signals(arrays)
             or sensor_range_problem(arrays, scenario) or logged_channels_problem(arrays)
             or object_path_problem(arrays, scenario)
             or object_orientation_problem(arrays) or joint_angle_problem(arrays))
+
+
+def declared_arrays_problem(declared: dict) -> str | None:
+    """What is wrong with the trial-log arrays' shapes, {name: (shape, dtype)} of those there,
+    else None: each time base a vector of at least two times, each array sampled at one a row
+    per time with its columns (_TIME_BASES). Asked of the .npy headers before any array is
+    decompressed (a few-kB log may declare hundreds of MB; what they declare together is
+    bounded by checked_npz_arrays' max_bytes), and by trial_arrays_problem of arrays in
+    memory: one wording for both. Their dtypes are array_types_problem's, asked after the
+    checksum (an edit to another dtype is said to be an edit)."""
+    for time_name, columns in _TIME_BASES.items():
+        if time_name not in declared:
+            continue
+        shape = tuple(declared[time_name][0])
+        if len(shape) != 1 or shape[0] < 2:
+            return (f"'{time_name}' holds {math.prod(shape)} time(s); a trial needs at least "
+                    "two")
+        for name, width in columns.items():
+            if name not in declared:
+                continue
+            expected = (shape[0],) if width is None else (shape[0], width)
+            if tuple(declared[name][0]) != expected:
+                return (f"'{name}' has shape {tuple(declared[name][0])}, but {shape[0]} samples "
+                        f"of '{time_name}' need {expected}")
+    return None
 
 
 def array_types_problem(arrays: dict) -> str | None:

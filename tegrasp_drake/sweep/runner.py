@@ -29,6 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from collections.abc import Callable
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.sweep.records import (
     TRIALS_FOLDER,
     RecordError,
@@ -670,7 +671,7 @@ def _tcp_reach_problem(address: str) -> str | None:
     if isinstance(error, ConnectionRefusedError):
         return f"nothing listens on port {port} (connection refused)"
     if error is not None:
-        return f"{error.strerror or error}"
+        return f"{os_error_text(error)}"
     return None
 
 

@@ -24,7 +24,8 @@ from tegrasp_drake.rig.objects import ObjectConfig, object_problem
 from tegrasp_drake.rig.ranges import number_problem, real_number
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.rig.typed_yaml import (ConfigError, assignment_key, assignment_problem,
-                                          keys_overlap, refuse_a_key_set_twice, set_words)
+                                          keys_overlap, refuse_a_key_set_twice, set_words,
+                                          unknown_field_problem)
 
 # The paper's three objects (Fig. 8a); a spec can add its own (`user_objects`).
 BUILTIN_OBJECTS = tuple(objects.BUILTIN_OBJECTS)
@@ -408,6 +409,23 @@ def _check_jittered_offsets(grid, xy_bound: float, source: str) -> None:
                 "placement_xy_bound_m")
 
 
+def per_trial_override_problem(assignment: str, remedy: str = "set it there") -> str | None:
+    """Why a sweep's (or a transfer world's) scenario override `assignment` may not be given,
+    or None: it sets a field of PER_TRIAL_SCENARIO_FIELDS, which the sweep sets per trial, or
+    names a field of such a section that no scenario has (a misspelt `object.mas`: told as
+    one, with the nearest names, never as a field set per trial); `remedy` ends the words of
+    a field set per trial."""
+    from tegrasp_drake.scenario.scenario import Scenario
+    key = assignment_key(assignment)
+    if not any(keys_overlap(key, per_trial) for per_trial in PER_TRIAL_SCENARIO_FIELDS):
+        return None
+    unknown = unknown_field_problem(assignment, Scenario)
+    if unknown:
+        return f"{unknown}; give one of its fields"
+    return (f"'{key}' is set per trial by the sweep (objects, grid, randomisation, base_seed, "
+            f"controllers); {remedy}")
+
+
 def _check_scenario_overrides(assignments, controllers, place, fail):
     """Each override a `key=value` every controller's scenario accepts, no per-trial field;
     a refused one named by `place(k)`."""
@@ -422,11 +440,9 @@ def _check_scenario_overrides(assignments, controllers, place, fail):
         if not isinstance(assignment, str) or assignment_problem(assignment):
             refuse(k, f"expected 'key=value' (as `tegrasp trial --set`), key a dotted "
                       f"field name such as object.mass, got {shorten(repr(assignment))}")
-        key = assignment_key(assignment)
-        for per_trial in PER_TRIAL_SCENARIO_FIELDS:
-            if keys_overlap(key, per_trial):
-                refuse(k, f"'{key}' is set per trial by the sweep (objects, grid, "
-                          "randomisation, base_seed, controllers); set it there")
+        problem = per_trial_override_problem(assignment)
+        if problem:
+            refuse(k, problem)
     from tegrasp_drake.hardware.config import HardwareStationConfig
     for controller in controllers if assignments else ():
         try:

@@ -12,8 +12,9 @@ import sys
 import time
 from collections.abc import Mapping
 
+from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.events.event_file import WORLD_FILE
-from tegrasp_drake.sweep.spec import (MAX_SCENARIO_OVERRIDES, PER_TRIAL_SCENARIO_FIELDS,
+from tegrasp_drake.sweep.spec import (MAX_SCENARIO_OVERRIDES, per_trial_override_problem,
                                       SweepSpec, refuse_too_many)
 from tegrasp_drake.sweep.spec_file import sweep_spec_from_fields
 from tegrasp_drake.rig import paths
@@ -274,10 +275,9 @@ def _parse_worlds(value, source: str) -> dict[str, TransferWorld]:
                               overrides=tuple(fields.get("overrides", ())))
         refuse_a_key_set_twice(world.overrides, source, f"worlds.{name}.overrides")
         for assignment in world.overrides:
-            key = assignment_key(assignment)
-            if any(keys_overlap(key, f) for f in PER_TRIAL_SCENARIO_FIELDS):
-                raise ConfigError(f"{source}: field 'worlds.{name}.overrides': '{key}' is set "
-                                  "per trial by the sweep; a world may not set it")
+            problem = per_trial_override_problem(assignment, "a world may not set it")
+            if problem:
+                raise ConfigError(f"{source}: field 'worlds.{name}.overrides': {problem}")
         world_assignments(world, f"{source}: field 'worlds.{name}.scenario'")
         worlds[name] = world
     return worlds
@@ -376,7 +376,7 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
                                                          record_object_ensemble)
     from tegrasp_drake.recording.paper_events import record_events
     from tegrasp_drake.sweep.runner import SweepError, progress_bar_factory
-    from tegrasp_drake.rig.files import (JSON_ARRAY_START, MAX_STATE_FILE_BYTES, UserPathError,
+    from tegrasp_drake.rig.files import (JSON_ARRAY_START, UserPathError,
                                          folder_problem, read_json_file, replace_problem,
                                          write_atomically)
     progress_bar = progress_bar_factory(progress, description=f"events of {world}",
@@ -385,15 +385,16 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
     assignments = list(recording_assignments(spec, world))
     marker = folder / WORLD_FILE
     kept = os.path.lexists(marker)
+    written = json.dumps(assignments, indent=1) + "\n"  # what this world's file holds
     if kept:  # a folder or device in its place is refused by the reader
         recorded = read_json_file(
-            marker, limit=MAX_STATE_FILE_BYTES, kind="a world's settings file",
+            marker, limit=world_file_limit(written), kind="this world's settings file",
             check=_assignments_problem, remedy=f"remove {folder} (its events are recorded "
             "again) or give another output folder")
         if recorded != assignments:
             raise SweepError(f"{folder} holds the events of world '{world}' recorded with "
-                             f"other settings ({recorded}); give another output folder or "
-                             "remove that one")
+                             f"other settings ({first_difference(recorded, assignments)}); "
+                             "give another output folder or remove that one")
     if not kept:  # a kept one holds these settings (checked above): nothing to write
         problem = folder_problem(folder) or replace_problem(marker)  # e.g. a file in its place
         if problem:
@@ -401,10 +402,9 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
         try:
             folder.mkdir(parents=True, exist_ok=True)
         except OSError as error:  # a file system that changed since the check, or refuses
-            raise UserPathError(f"{folder}: cannot be made ({error.strerror or error}); give "
+            raise UserPathError(f"{folder}: cannot be made ({os_error_text(error)}); give "
                                 "another output folder") from None
-        write_atomically(marker, json.dumps(assignments, indent=1) + "\n",
-                         start=JSON_ARRAY_START)
+        write_atomically(marker, written, start=JSON_ARRAY_START)
     recorders = {"": ("", record_events),  # what the log calls them, how they are recorded
                  ENSEMBLE_FOLDER: ("ensemble ", lambda name, scenario: record_object_ensemble(
                      name, scenario, TEMPLATE_RUNS))}
@@ -427,6 +427,37 @@ def record_world_events(spec: TransferSpec, world: str, folder, *,
                 raise SweepError(f"world {world}: {error}") from None
             bar.update(1)
     return len(pending)
+
+
+def world_file_limit(written: str) -> int:
+    """[bytes] The most a world's WORLD_FILE is read to, `written` the text this package writes
+    there for the world: 4 times it and 64 kB (room for other settings of a world, never the
+    megabytes of a file that is no world's, whose list would cost hundreds of MB to parse)."""
+    return 4 * len(written.encode("utf-8")) + 65_536
+
+
+# [characters] About how much of each side of a differing assignment a refusal shows.
+_DIFFERENCE_CHARS = 36
+
+
+def first_difference(recorded: list, expected: list) -> str:
+    """The first assignment in which the settings a world's events were `recorded` with
+    differ from the `expected` ones, in about 80 characters: its number and both sides,
+    or the one that only one side has."""
+    for k in range(max(len(recorded), len(expected))):
+        there = recorded[k] if k < len(recorded) else None
+        here = expected[k] if k < len(expected) else None
+        if there == here:
+            continue
+        if there is None:
+            return (f"they lack setting {k + 1}, {shown(shorten(here, _DIFFERENCE_CHARS))}, "
+                    "which this world has")
+        if here is None:
+            return (f"setting {k + 1} is {shown(shorten(there, _DIFFERENCE_CHARS))}, which "
+                    "this world lacks")
+        return (f"setting {k + 1} is {shown(shorten(there, _DIFFERENCE_CHARS))} there, "
+                f"{shown(shorten(here, _DIFFERENCE_CHARS))} in this world")
+    return "they are the same"
 
 
 def _assignments_problem(data) -> str | None:

@@ -576,7 +576,8 @@ def _result_edit(change):
 # refuses the trial or demo before it simulates, naming the file and what to do, and stays.
 @pytest.mark.parametrize("spoil, name, words", [
     (lambda folder: (folder / "trial.npz").write_text("my notes"), "trial.npz",
-     "is not a trial log a run wrote (is truncated or corrupt"),
+     "is not a trial log a run wrote (is not a trial log (an .npz zip archive written by "
+     "tegrasp): it starts with the bytes 6d 79 20 6e, not a zip archive's (50 4b 03 04))"),
     (_edited_earlier_log, "trial.npz", "is not a trial log a run wrote (was changed after it "
      "was written"),
     (lambda folder: np.savez(folder / "trial.npz", x=[1.0]), "trial.npz",

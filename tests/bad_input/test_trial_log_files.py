@@ -41,8 +41,10 @@ def _flip_bits(path):
 
 
 @pytest.mark.parametrize("make, expected", [
-    (lambda p: _truncate(trial_log(p)), "is truncated or corrupt"),
-    (lambda p: _flip_bits(trial_log(p)), "is truncated or corrupt"),
+    (lambda p: _truncate(trial_log(p)), "is incomplete or damaged, not one an earlier "
+     "version wrote: it starts as a zip archive but has no zip directory at its end"),
+    (lambda p: _flip_bits(trial_log(p)), "is incomplete or damaged, not one an earlier "
+     "version wrote"),
     (lambda p: trial_log(p, channels=np.ones((50, 4))),
      "'channels' has shape (50, 4), but 101 samples of 't_ra' need (101, 4)"),
     (lambda p: trial_log(p, channels=np.full((101, 4), np.nan)),
