@@ -2,6 +2,7 @@
 and writes it with `save_figure` as PNG, PDF or SVG (by suffix), with matplotlib's object API
 (no pyplot, no global backend state)."""
 
+import contextlib
 import os
 import pathlib
 
@@ -110,6 +111,7 @@ def save_figure(figure, path, *, dpi: float = PNG_DPI, tight: bool = False) -> p
     problem = figure_replace_problem(path)  # checked before the work too; here for every writer
     if problem:
         raise UserPathError(f"cannot write the figure {path}: it {problem}")
+    made = [folder for folder in (path.parent, *path.parent.parents) if not folder.exists()]
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         # A full disk leaves the old figure whole.
@@ -117,6 +119,9 @@ def save_figure(figure, path, *, dpi: float = PNG_DPI, tight: bool = False) -> p
             figure.savefig(temporary, format=figure_format, dpi=dpi, metadata=_metadata(path),
                            bbox_inches="tight" if tight else None)
     except OSError as error:
+        for folder in made:  # the folders made for it, innermost first, if still empty
+            with contextlib.suppress(OSError):
+                folder.rmdir()
         raise UserPathError(f"cannot write the figure {path}: {os_error_text(error)}; "
                             f"{write_error_remedy(error)}", error) from None
     return path

@@ -218,6 +218,8 @@ def write_error_remedy(error: OSError) -> str:
         return "free some space or write it to another disk"
     if error.errno == errno.ELOOP:
         return _LINK_LOOP_REMEDY
+    if error.errno == errno.ENAMETOOLONG:
+        return "give a shorter name"
     return "give a folder you can write"
 
 
@@ -235,11 +237,19 @@ def read_error_remedy(error: OSError) -> str:
             "once the disk or file system answers, or give a copy")
 
 
+# A seek or read at a position the file itself gave (a zip directory's offset past the end
+# or negative) is refused by the system as EINVAL or EOVERFLOW: the content's fault, not the
+# disk's.
+_POSITION_ERRNOS = frozenset({errno.EINVAL, errno.EOVERFLOW})
+
+
 def is_read_failure(error: BaseException) -> bool:
     """Whether `error` is the operating system's refusal to read a file (an OSError carrying
     an errno: EIO, EACCES, ...), not a reader's finding about what the file holds (zipfile's,
-    numpy's and the package's own OSErrors carry none)."""
-    return isinstance(error, OSError) and error.errno is not None
+    numpy's and the package's own OSErrors carry none; a position the file gave that the
+    system refuses, _POSITION_ERRNOS, is the file's)."""
+    return (isinstance(error, OSError) and error.errno is not None
+            and error.errno not in _POSITION_ERRNOS)
 
 
 @contextlib.contextmanager

@@ -202,6 +202,11 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
         raise DamagedNpzError("it starts as a zip archive but has no zip directory at its "
                               "end: it was cut short (a copy or download that stopped) or "
                               "damaged") from None
+    except OSError as e:
+        if is_read_failure(e):
+            raise
+        raise DamagedNpzError("its zip directory is declared at a position the file does not "
+                              "have: it is damaged") from None
     with zip_file:
         try:
             headers = npz_array_headers(zip_file)
@@ -209,6 +214,11 @@ def checked_npz_arrays(path, names, *, max_bytes: int, optional=(), text=(),
             raise NpzHeaderError(f"a member cannot be read: {e}") from None
         except (zipfile.BadZipFile, zlib.error, EOFError) as e:
             raise DamagedNpzError(_damage_words(e)) from None
+        except OSError as e:
+            if is_read_failure(e):
+                raise
+            raise DamagedNpzError("a member is declared at a position the file does not "
+                                  "have: it is damaged") from None
         if known is not None:
             unknown = [name for name in headers if name not in known]
             if unknown:

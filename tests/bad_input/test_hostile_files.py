@@ -161,6 +161,15 @@ def _member_changed(path):
     path.write_bytes(bytes(data))
 
 
+def _directory_past_the_end(path):
+    """The end record's offset of the zip directory points past the end of the file: the
+    system refuses the seek (EINVAL), which is the file's fault, not the disk's."""
+    data = bytearray(trial_log(path).read_bytes())
+    end = data.rfind(b"PK\x05\x06")
+    data[end + 16:end + 20] = struct.pack("<I", 0xFFFFFFF0)
+    path.write_bytes(bytes(data))
+
+
 # Rule: a log of this package's that is cut short, whose bytes fail their CRC-32, or that lacks
 # an array its metadata's format version holds is incomplete or damaged, and said to be not an
 # earlier version's log.
@@ -170,7 +179,8 @@ def _member_changed(path):
     (_member_changed, "is incomplete or damaged, not one an earlier version wrote"),
     (lambda p: _without_member(p, "taxels.npy"), "is incomplete, not one an earlier version "
      "wrote: it lacks the arrays ['taxels'], which every log of its format version 1 holds"),
-], ids=["cut-short", "crc", "member-missing"])
+    (_directory_past_the_end, "is incomplete or damaged"),
+], ids=["cut-short", "crc", "member-missing", "directory-past-the-end"])
 @pytest.mark.parametrize("argv", [["plot", "trial", "LOG", "--out", "x.png"],
                                   ["emulate", "myrio", "--trial", "LOG"]])
 def test_an_incomplete_or_damaged_log_is_not_called_an_earlier_versions(make, words, argv,

@@ -85,6 +85,17 @@ def test_a_figure_that_cannot_be_written_is_one_line(tmp_path, capfd):
     assert code == cli.EXIT_ERROR and list(tmp_path.iterdir()) == []
 
 
+def test_a_figure_name_too_long_in_folders_to_be_made_leaves_no_folders(tmp_path, capfd,
+                                                                         monkeypatch):
+    """The folders do not exist yet, so the name's length shows only when the figure is
+    written: the refusal says to shorten the name, and the folders made for it are removed."""
+    monkeypatch.chdir(tmp_path)
+    out = pathlib.Path("made", "deeper", "b" * 260 + ".png")
+    code, text = run_cli(["plot", "events", "--object", "box", "--out", str(out)], capfd)
+    assert_one_line_error(code, text, "File name too long; give a shorter name")
+    assert list(tmp_path.iterdir()) == []
+
+
 # Rule: a symbolic link at --out, dangling or not, is the user's: it is refused by name
 # (with --overwrite too, as trial's --out refuses one), never replaced by the figure.
 @pytest.mark.parametrize("overwrite", [[], ["--overwrite"]])
