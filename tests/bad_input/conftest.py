@@ -1,10 +1,11 @@
 """Fixtures the bad-input tests share: a copy of the package's events to spoil, a guard
-that fails a test whose trial reaches its simulator, and the package's log levels as each
-test found them."""
+that fails a test whose trial reaches its simulator, one that fails a test whose numpy reads
+an array, and the package's log levels as each test found them."""
 
 import logging
 import shutil
 
+import numpy.lib.format as npy_format
 import pytest
 
 from tegrasp_drake.commands.verbosity import DRAKE_LOGGER, PACKAGE_LOGGER
@@ -42,3 +43,11 @@ def no_simulation(monkeypatch):
     def simulated(*args, **kwargs):
         raise AssertionError("the trial was simulated")
     monkeypatch.setattr(trial, "MakeSimulator", simulated)
+
+
+@pytest.fixture
+def no_array_is_read(monkeypatch):
+    """Fails the test if numpy is asked to read (and so allocate) any array."""
+    def refuse(*args, **kwargs):
+        raise AssertionError("an array was read before its header was checked")
+    monkeypatch.setattr(npy_format, "read_array", refuse)

@@ -67,14 +67,6 @@ def _log_declaring(path, declared_shape, stored_bytes: int):
     return path
 
 
-@pytest.fixture
-def no_array_is_read(monkeypatch):
-    """Fails the test if numpy is asked to read (and so allocate) any array."""
-    def refuse(*args, **kwargs):
-        raise AssertionError("an array was read before its header was checked")
-    monkeypatch.setattr(npy_format, "read_array", refuse)
-
-
 @pytest.mark.parametrize("argv", [["plot", "trial", "LOG", "--out", "x.png"],
                                   ["emulate", "myrio", "--trial", "LOG"]])
 def test_a_trial_log_declaring_a_huge_array_is_refused_from_its_header(

@@ -70,14 +70,6 @@ def _log_with_huge_taxels(path, rows: int):
     return _zip_of(path, entries)
 
 
-@pytest.fixture
-def no_array_is_read(monkeypatch):
-    """Fails the test if numpy is asked to read (and so allocate) any array."""
-    def refuse(*args, **kwargs):
-        raise AssertionError("an array was read before its header was checked")
-    monkeypatch.setattr(npy_format, "read_array", refuse)
-
-
 # Rule: a trial log whose .npy headers declare arrays of other shapes than its time bases give
 # (a 500 MB 'taxels' over 11 samples of 't_sa', in a 10 kB file) is refused from the headers,
 # before any array is decompressed, in the words a log read whole gets.
