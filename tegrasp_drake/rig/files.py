@@ -239,17 +239,19 @@ def read_error_remedy(error: OSError) -> str:
 
 # A seek or read at a position the file itself gave (a zip directory's offset past the end
 # or negative) is refused by the system as EINVAL or EOVERFLOW: the content's fault, not the
-# disk's.
+# disk's. (The package's own OSErrors that carry EINVAL, NotAFileError and UserPathError, are
+# not the system's and stay read failures.)
 _POSITION_ERRNOS = frozenset({errno.EINVAL, errno.EOVERFLOW})
 
 
 def is_read_failure(error: BaseException) -> bool:
     """Whether `error` is the operating system's refusal to read a file (an OSError carrying
     an errno: EIO, EACCES, ...), not a reader's finding about what the file holds (zipfile's,
-    numpy's and the package's own OSErrors carry none; a position the file gave that the
-    system refuses, _POSITION_ERRNOS, is the file's)."""
-    return (isinstance(error, OSError) and error.errno is not None
-            and error.errno not in _POSITION_ERRNOS)
+    numpy's and the package's own OSErrors carry none; the system's refusal of a position the
+    file gave, _POSITION_ERRNOS on a plain OSError, is the file's)."""
+    if not isinstance(error, OSError) or error.errno is None:
+        return False
+    return not (type(error) is OSError and error.errno in _POSITION_ERRNOS)
 
 
 @contextlib.contextmanager
