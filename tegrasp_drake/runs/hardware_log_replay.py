@@ -26,7 +26,7 @@ from tegrasp_drake.events.streaming_correlation import NO_EVENT
 from tegrasp_drake.events.transitions import REQUIRED_TRANSITIONS, transition_name
 from tegrasp_drake.hardware.device_log_messages import RUN_INFO_CHANNEL
 from tegrasp_drake.rig import paths
-from tegrasp_drake.rig.echo import shown
+from tegrasp_drake.rig.echo import shorten
 from tegrasp_drake.rig.files import one_line
 from tegrasp_drake.runs.hardware_log_reader import (RunLog, RunLogError, TactileSegment,
                                                     read_run_log)
@@ -206,14 +206,19 @@ def _check_events_felt_on_the_runs_object(scenario, folder, events: dict, path) 
     check_events_object(dataclasses.replace(scenario, object=grasped), folder, events)
 
 
+PATH_MAX_CHARS = 4096  # Linux's PATH_MAX: no folder a run used is named by a longer path
+
 # What to do when the events folder a run log names cannot be replayed with.
 REPLAY_EVENTS_ADVICE = ("Give --events DIR, a folder holding the object's events, to replay "
                         "with those")
 
 
 def _recorded_folder_words(path, folder: str) -> str:
-    """How a refusal names the events folder a run's log recorded (never one the user gave)."""
-    return (f"run log '{path}' recorded the events folder its run used, {shown(folder)} "
+    """How a refusal names the events folder a run's log recorded (never one the user gave):
+    whole, as the user must find it (up to a path's longest, 4096 bytes), control characters
+    escaped."""
+    return (f"run log '{path}' recorded the events folder its run used, "
+            f"'{one_line(shorten(folder, PATH_MAX_CHARS))}' "
             f"({RUN_INFO_CHANNEL} events_dir), which the replay reads when no --events is "
             "given")
 
