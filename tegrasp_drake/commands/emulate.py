@@ -15,7 +15,6 @@ import pathlib
 import re
 import signal
 
-from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.scenario_args import add_scenario_arguments, scenario_from_arguments
 from tegrasp_drake.hardware.robotiq.modbus_client import quiet_modbus_library
@@ -28,7 +27,7 @@ from tegrasp_drake.rig.ranges import FAULT_DELAY
 from tegrasp_drake.rig.echo import shorten, shown
 from tegrasp_drake.hardware.realtime import (EMULATOR_PRIORITY, SCHEDULING_POLICIES,
                                               raise_scheduling)
-from tegrasp_drake.rig.files import existing_file_head, output_file_problem
+from tegrasp_drake.rig.files import existing_file_head, output_file_problem, os_error_text
 
 logger = logging.getLogger(__name__)
 

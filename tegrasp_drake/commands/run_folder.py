@@ -11,11 +11,10 @@ import re
 import shutil
 import tempfile
 
-from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.events.event_file import INDEX_FILE
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS, starts_as_figure
 from tegrasp_drake.figures.trial_figures import TRIAL_FIGURE_KEYS, TRIAL_FIGURE_STEMS
-from tegrasp_drake.rig.files import (FOLDER_HELD, JSON_OBJECT_START, FolderHeldError,
+from tegrasp_drake.rig.files import (os_error_text, FOLDER_HELD, JSON_OBJECT_START, FolderHeldError,
                                      absent_folders, claim_folder, file_problem,
                                      folder_problem, held_folder, interruptions_deferred,
                                      load_json, made_folders_removed_if_empty,

@@ -8,7 +8,6 @@ import contextlib
 import json
 import sys
 
-from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
 from tegrasp_drake.commands.progress import SimulatedTimeBar, progress_wanted
 from tegrasp_drake.commands.run_folder import (REPLAY_KEY, RunFolderError, commit_run,
@@ -21,7 +20,7 @@ from tegrasp_drake.commands.viewer_args import (add_viewer_arguments, check_html
                                                 write_replay_html)
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES, controllers_help
 from tegrasp_drake.figures.figure_files import FIGURE_FORMATS
-from tegrasp_drake.rig.files import free_space_problem
+from tegrasp_drake.rig.files import free_space_problem, os_error_text
 from tegrasp_drake.rig.number_text import number_text
 
 # [bytes per second of simulated time] what a trial's run folder takes, in the largest

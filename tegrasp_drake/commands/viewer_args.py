@@ -5,9 +5,9 @@ the run's recording as one standalone HTML file (Meshcat.StaticHtml: no server, 
 import pathlib
 import sys
 
-from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.commands.error_boundary import ERROR_LEAD
-from tegrasp_drake.rig.files import existing_file_head, output_file_problem, write_atomically
+from tegrasp_drake.rig.files import (existing_file_head, output_file_problem, write_atomically,
+                                     os_error_text)
 
 HTML_START = b"<!DOCTYPE html>"  # how Meshcat.StaticHtml's page starts (an HTML5 document)
 REPLAY_TITLE = b"<title>Drake MeshCat</title>"  # in that page's head, within its first kB

@@ -20,9 +20,8 @@ import zlib
 
 import numpy as np
 
-from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.rig.channels import TAXELS_PER_PAD
-from tegrasp_drake.rig.files import is_read_failure, one_line, read_error_remedy
+from tegrasp_drake.rig.files import is_read_failure, one_line, read_error_remedy, os_error_text
 from tegrasp_drake.rig.npz_headers import (MAX_TRIAL_LOG_BYTES, DamagedNpzError,
                                            DeclaredArraysError, NotAnNpzError,
                                            NpzHeaderError, checked_npz_arrays)

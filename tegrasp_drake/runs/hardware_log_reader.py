@@ -13,13 +13,12 @@ import struct
 import numpy as np
 from drake import lcmt_jaco_command, lcmt_jaco_status
 
-from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.control.controller_registry import CONTROLLER_NAMES
 from tegrasp_drake.control.grasp_modes import WORDS, Mode, Transition, words_problem
 from tegrasp_drake.rig.objects import object_name_problem
 from tegrasp_drake.rig.ranges import check_ranges, field_range
 from tegrasp_drake.rig.echo import shorten, shown
-from tegrasp_drake.rig.files import (REPLACEMENT_CHARACTER, DuplicateKeyError,
+from tegrasp_drake.rig.files import (os_error_text, REPLACEMENT_CHARACTER, DuplicateKeyError,
                                      InputTooLargeError, JsonValueError, file_problem,
                                      load_json, one_line, open_bounded, read_bounded)
 from tegrasp_drake.rig.file_window import FileWindow

@@ -24,7 +24,6 @@ import lcm
 from pydrake.systems.framework import EventStatus
 from pydrake.lcm import DrakeLcm
 
-from tegrasp_drake.rig.files import os_error_text
 from tegrasp_drake.hardware.device_log_messages import (
     FAULT_CHANNEL, RUN_INFO_CHANNEL, TRANSITION_CHANNEL)
 from tegrasp_drake.hardware.lcm_time import utime_from_time
@@ -34,7 +33,7 @@ from tegrasp_drake.hardware.config import HardwareStationConfig, hardware_config
 from tegrasp_drake.hardware.realtime import realtime_scheduling
 from tegrasp_drake.hardware.station import MakeHardwareStation
 from tegrasp_drake.rig import station_interface as ports
-from tegrasp_drake.rig.files import free_bytes
+from tegrasp_drake.rig.files import free_bytes, os_error_text
 from tegrasp_drake.lcmtypes import (lcmt_tegrasp_fault, lcmt_tegrasp_run_info,
                                     lcmt_tegrasp_transition)
 from tegrasp_drake.scenario.scenario import scenario_to_yaml, with_controller
